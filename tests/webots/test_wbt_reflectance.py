@@ -1,7 +1,8 @@
 """An imported wall reflects infra-red by its appearance, as in Webots: its proximity readings are
 ``LUT(d / f)`` with ``f = 0.2 + 0.8 * red * (1 - 0.5 * roughness)`` (red times ``1 - transparency``;
 Webots' reference manual, DistanceSensor; docs/webots.md), and the import's report and world file
-carry that ``f``."""
+carry that ``f``. A textured wall reflects by its image's mean red times the appearance's own, as
+Webots picks the texture's colour (#32)."""
 
 from __future__ import annotations
 
@@ -12,7 +13,7 @@ import numpy as np
 import pytest
 
 import mazesim
-from mazesim.webots import import_wbt_text
+from mazesim.webots import import_wbt, import_wbt_text
 from mazesim.webots.devices import PROXIMITY_TABLE
 from mazesim.webots.rays import WallBoxes
 from mazesim.webots.sensors import DeviceMount, LookupTable
@@ -77,3 +78,68 @@ def test_the_world_file_keeps_the_reflectance_and_the_colour(tmp_path: Path) -> 
     first, _ = front_readings(world, 0.4)
     second, _ = front_readings(again, 0.4)
     assert np.array_equal(first, second)
+
+
+def textured_wall(tmp_path: Path, appearance: str, image: np.ndarray | None) -> Path:
+    """A world file in ``tmp_path`` with ``wall_ahead(appearance)``, and ``image`` (an (H, W, 3)
+    uint8 array) as ``textures/wall.png`` beside it unless None."""
+    from PIL import Image
+
+    if image is not None:
+        (tmp_path / "textures").mkdir()
+        Image.fromarray(image).save(tmp_path / "textures" / "wall.png")
+    path = tmp_path / "textured.wbt"
+    path.write_text(wall_ahead(appearance))
+    return path
+
+
+#: A PBRAppearance and an Appearance whose texture is the image ``wall.png``.
+PBR_TEXTURE = 'PBRAppearance { baseColorMap ImageTexture { url [ "textures/wall.png" ] } }'
+PLAIN_TEXTURE = 'Appearance { texture ImageTexture { url [ "wall.png" ] } }'
+
+
+def test_a_textured_wall_reflects_by_its_image_s_mean_red(tmp_path: Path) -> None:
+    # Half the image red 1, half black, every pixel green: a mean red of 0.5, f = 0.6.
+    image = np.zeros((8, 8, 3), dtype=np.uint8)
+    image[:, :4, 0] = 255
+    image[:, :, 1] = 255
+    world, report = import_wbt(textured_wall(tmp_path, PBR_TEXTURE, image))
+    assert [o["reflectance"] for o in report["obstacles"]] == [pytest.approx(0.6)]
+    assert report["wall_textures"][0]["candidates"][0].endswith("textures/wall.png")
+    readings, expected = front_readings(world, 0.6)
+    assert readings == pytest.approx(expected, rel=0.02, abs=1.0)
+    _, white = front_readings(world, 1.0)
+    assert np.all(readings < white - 50.0), (readings, white)
+
+
+@pytest.mark.parametrize(
+    ("appearance", "factor"),
+    [
+        # The appearance's own red and roughness apply to the texture's: 0.2 + 0.8 * 0.25 * 0.5.
+        (
+            "PBRAppearance { baseColor 0.5 1 1 roughness 1 baseColorMap ImageTexture { url [ "
+            '"textures/wall.png" ] } }',
+            0.3,
+        ),
+        # An Appearance's texture is found in textures/ by its file name; its material's
+        # diffuse colour does not count under a texture, its transparency does.
+        (
+            "Appearance { material Material { diffuseColor 0 0 0 transparency 0.5 } texture "
+            'ImageTexture { url [ "wall.png" ] } }',
+            0.4,
+        ),
+    ],
+)
+def test_a_texture_s_red_multiplies_the_appearance_s(
+    tmp_path: Path, appearance: str, factor: float
+) -> None:
+    image = np.full((4, 4, 3), [127.5, 0, 0], dtype=np.float64).round().astype(np.uint8)
+    _, report = import_wbt(textured_wall(tmp_path, appearance, image))
+    assert [o["reflectance"] for o in report["obstacles"]] == [pytest.approx(factor, abs=2e-3)]
+
+
+def test_a_textured_wall_without_its_image_reflects_as_white(tmp_path: Path) -> None:
+    world, report = import_wbt(textured_wall(tmp_path, PLAIN_TEXTURE, None))
+    assert [o["reflectance"] for o in report["obstacles"]] == [1.0]
+    readings, expected = front_readings(world, 1.0)
+    assert readings == pytest.approx(expected, rel=0.02, abs=1.0)

@@ -15,6 +15,7 @@ import math
 from pathlib import Path
 
 import pytest
+from PIL import Image
 
 from mazesim.webots.importer import import_wbt
 from swarm_project import BODY_RADIUS, run_project
@@ -51,15 +52,26 @@ def test_a_supervisor_reset_puts_the_driving_robots_back_and_restarts_their_cloc
     tmp_path: Path,
 ) -> None:
     """The reset asked at step 20 puts the runner back at its start after step 21, its clock
-    and wheel encoder from 0, its motors back at position control (it stays there)."""
+    and wheel encoder from 0, its motors back at position control (it stays there); the
+    restart of the runner's controller asked at step 50 starts that controller again, which
+    drives on from there, its devices new and its clock the world's (#33)."""
     done, logs = run("reset_restart", tmp_path / "logs", 4.0)
     x = {int(k): v for k, v in logs["boss"]["x"].items()}
     assert x[20] == pytest.approx(-0.5 + 20 * 5.0 * 0.02 * 0.032, abs=1e-4)
-    assert all(x[step] == pytest.approx(-0.5, abs=1e-9) for step in range(21, 81))
-    for name in ("runner", "walker"):
-        assert logs[name]["clock_back_to"] == 0.0
-        assert logs[name]["time"] == pytest.approx((100 - 21) * 0.032)
-        assert logs[name]["encoder"] == pytest.approx(0.0, abs=1e-9)
+    assert all(x[step] == pytest.approx(-0.5, abs=1e-9) for step in range(21, 51))
+    assert x[80] == pytest.approx(-0.5 + 30 * 5.0 * 0.02 * 0.032, abs=1e-4)
+    assert logs["walker"]["clock_back_to"] == 0.0
+    assert logs["walker"]["time"] == pytest.approx((100 - 21) * 0.032)
+    assert logs["walker"]["encoder"] == pytest.approx(0.0, abs=1e-9)
+    # The runner's second process started after the reset: its clock never went back, and
+    # its encoder counts from where the first process's reset left it.
+    assert (tmp_path / "logs" / "runner.starts").read_text() == "start\nstart\n"
+    assert (tmp_path / "logs" / "walker.starts").read_text() == "start\n"
+    assert logs["runner"]["clock_back_to"] == -1.0
+    steps = logs["runner"]["steps"]
+    assert logs["runner"]["encoder"] == pytest.approx(steps * 5.0 * 0.032, rel=1e-4)
+    runner = next(r for r in done.robots if r.name == "runner")
+    assert runner.restarts_s == [pytest.approx(50 * 0.032)]  # the run's clock, as imported_s
     assert all(r.exit_status == 0 for r in done.robots)
 
 
@@ -132,8 +144,8 @@ def test_twelve_robots_of_one_controller_run_in_one_world_without_overlapping(
 
 def test_a_supervisor_saves_the_world_where_its_robots_are(tmp_path: Path) -> None:
     """``worldSave`` writes the world with each robot's ``translation`` where it stands (the
-    file imports again with that start) and says True; ``setLabel`` and ``exportImage`` are
-    accepted."""
+    file imports again with that start) and says True; ``setLabel`` is accepted and
+    ``exportImage`` writes the view, here of a supervisor without a body."""
     logs_dir = tmp_path / "logs"
     _, logs = run("reporter", logs_dir, 2.0)
     assert logs["reporter"]["saved"] is True
@@ -144,3 +156,6 @@ def test_a_supervisor_saves_the_world_where_its_robots_are(tmp_path: Path) -> No
     assert poses["one"][0] == pytest.approx(20 * 3.0 * 0.02 * 0.032, abs=1e-4)
     assert poses["two"][:2] == pytest.approx([poses["one"][0], 0.3], abs=1e-6)
     assert poses["reporter"] == [0.0, 0.0, 0.0]
+    assert logs["reporter"]["files"] == ["saved.wbt", "view.jpg"]
+    with Image.open(logs_dir / "view.jpg") as view:
+        assert (view.format, view.size) == ("JPEG", (400, 400))

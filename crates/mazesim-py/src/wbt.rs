@@ -79,6 +79,14 @@ fn robot_and_floor(out: &Bound<'_, PyDict>, import: &WbtImport) -> PyResult<()> 
         d.set_item("candidates", texture.candidates.clone())
     })?;
     out.set_item("floor_textures", textures)?;
+    let walls = dicts(py, &import.wall_textures, |d, texture| {
+        d.set_item("urls", texture.urls.clone())?;
+        d.set_item("owner", &texture.owner)?;
+        d.set_item("red", texture.red)?;
+        d.set_item("roughness", texture.roughness)?;
+        d.set_item("candidates", texture.candidates.clone())
+    })?;
+    out.set_item("wall_textures", walls)?;
     out.set_item("floor_paint", import.paint.len())?;
     Ok(())
 }
@@ -130,6 +138,41 @@ fn grey_images(images: Option<&Bound<'_, PyAny>>) -> PyResult<BTreeMap<String, G
     Ok(out)
 }
 
+/// The mean reds handed in for the wall textures: `{file: mean red in [0, 1]}`.
+fn wall_reds(reds: Option<&Bound<'_, PyAny>>) -> PyResult<BTreeMap<String, f64>> {
+    let reds = match reds {
+        None => None,
+        Some(obj) => Some(dict_argument(
+            obj,
+            "wall_reds",
+            " of file name -> mean red",
+        )?),
+    };
+    let mut out = BTreeMap::new();
+    for (key, value) in reds.into_iter().flat_map(|d| d.iter()) {
+        let file: String = key.extract().map_err(|_| {
+            wrong_type(format!(
+                "expected the keys of wall_reds to be file names (str), found {}",
+                type_name(&key)
+            ))
+        })?;
+        let red: f64 = value.extract().map_err(|_| {
+            wrong_type(format!(
+                "wall texture {file:?}: expected its mean red as a float, found {}",
+                type_name(&value)
+            ))
+        })?;
+        if !(0.0..=1.0).contains(&red) {
+            return Err(Error::InvalidArgument(format!(
+                "wall texture {file:?}: expected its mean red in [0, 1], found {red}"
+            )))
+            .py();
+        }
+        out.insert(file, red);
+    }
+    Ok(out)
+}
+
 /// The import as `{"obstacles": [...], "sensed_only": [...], "bodies": [...], "robot": {...} | None, "basic_time_step_ms": t,
 /// (each obstacle and body with its `owners`, the lines of the nodes that hold it, and its
 /// infra-red `reflectance`, each body with the `colour` a camera sees (None: the grey of its
@@ -137,7 +180,7 @@ fn grey_images(images: Option<&Bound<'_, PyAny>>) -> PyResult<BTreeMap<String, G
 /// world and how many; `sensed_only` the obstacles only infra-red rays and cameras meet, as
 /// obstacles without owners, each with its `reflectance`),
 /// "warnings": [...], "one_controller_warnings": [...], "robot_model", "robot_line", "robot_profile", "extension_devices", "floor_textures",
-/// "floor_paint"}`, in metres and radians, world frame, z up.
+/// "wall_textures", "floor_paint"}`, in metres and radians, world frame, z up.
 fn report<'py>(py: Python<'py>, import: &WbtImport) -> PyResult<Bound<'py, PyDict>> {
     let footprint = |d: &Bound<'py, PyDict>, obstacle: &Obstacle| -> PyResult<()> {
         match *obstacle {
@@ -234,6 +277,9 @@ fn report<'py>(py: Python<'py>, import: &WbtImport) -> PyResult<Bound<'py, PyDic
     Ok(out)
 }
 
+/// The `floor_images` and `wall_reds` arguments of an import.
+type Textures<'a, 'py> = (Option<&'a Bound<'py, PyAny>>, Option<&'a Bound<'py, PyAny>>);
+
 fn world_name(source: &Path) -> String {
     source
         .file_stem()
@@ -246,9 +292,10 @@ fn finish<'py>(
     py: Python<'py>,
     mut import: WbtImport,
     source: &Path,
-    floor_images: Option<&Bound<'py, PyAny>>,
+    (floor_images, reds): Textures<'_, 'py>,
 ) -> PyResult<(PyWorld, Bound<'py, PyDict>)> {
     import.paint_floor(&grey_images(floor_images)?);
+    import.shade_walls(&wall_reds(reds)?);
     let import = &import;
     let world = import
         .to_world_of(&world_name(source), &source.display().to_string())
@@ -263,23 +310,26 @@ fn finish<'py>(
 
 /// Imports a Webots `.wbt` file: the mazesim World and the import report (a dict).
 /// `floor_images` maps texture files (as the report's `floor_textures` candidates name them) to
-/// their grey levels; the textures without one are reported missing. `controller` names the
+/// their grey levels; the textures without one are reported missing. `wall_reds` maps wall
+/// texture files (the report's `wall_textures` candidates) to their images' mean red in
+/// [0, 1], which the walls' infra-red reflection factor follows. `controller` names the
 /// controller that will run: of several e-pucks, the first whose `controller` field is it is
 /// the robot; `robot_line` picks the robot (an e-puck or not) whose node is on that line (the
 /// `line` of an entry of the report's `robots`).
 #[pyfunction]
-#[pyo3(signature = (path, floor_images = None, controller = None, robot_line = None))]
+#[pyo3(signature = (path, floor_images = None, controller = None, robot_line = None, wall_reds = None))]
 pub fn import_wbt<'py>(
     py: Python<'py>,
     path: PathArg,
     floor_images: Option<&Bound<'py, PyAny>>,
     controller: Option<Text>,
     robot_line: Option<IntArg>,
+    wall_reds: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<(PyWorld, Bound<'py, PyDict>)> {
     enter(|| {
         let path: PathBuf = path.value("path", "a str or os.PathLike")?;
         let robot = (controller, robot_line, None);
-        import_chosen(py, robot, floor_images, &path, |choice| {
+        import_chosen(py, robot, (floor_images, wall_reds), &path, |choice| {
             WbtImport::load_for(&path, choice)
         })
     })
@@ -291,7 +341,7 @@ pub fn import_wbt<'py>(
 fn import_chosen<'py>(
     py: Python<'py>,
     (controller, robot_line, imported_from): (Option<Text>, Option<IntArg>, Option<IntArg>),
-    floor_images: Option<&Bound<'py, PyAny>>,
+    textures: Textures<'_, 'py>,
     source: &Path,
     load: impl FnOnce(RobotChoice<'_>) -> mazesim_core::Result<WbtImport> + Send,
 ) -> PyResult<(PyWorld, Bound<'py, PyDict>)> {
@@ -307,7 +357,7 @@ fn import_chosen<'py>(
             imported_from,
         })
     })?;
-    finish(py, import, source, floor_images)
+    finish(py, import, source, textures)
 }
 
 /// A line number argument (`robot_line`, `imported_from`): a line of the file (from 1), or
@@ -323,8 +373,8 @@ fn line_number(line: Option<IntArg>, name: &str) -> PyResult<Option<usize>> {
 /// Imports the text of a `.wbt` file; `source` names it in error messages and names the world.
 /// Lone surrogates (not UTF-8) are read as U+FFFD, so that they end in a located format error.
 #[pyfunction]
-#[pyo3(signature = (text, source = SourceName::Value(Label("<string>".into())), floor_images = None, controller = None, robot_line = None, imported_from = None),
-    text_signature = "(text, source='<string>', floor_images=None, controller=None, robot_line=None, imported_from=None)")]
+#[pyo3(signature = (text, source = SourceName::Value(Label("<string>".into())), floor_images = None, controller = None, robot_line = None, imported_from = None, wall_reds = None),
+    text_signature = "(text, source='<string>', floor_images=None, controller=None, robot_line=None, imported_from=None, wall_reds=None)")]
 pub fn import_wbt_text<'py>(
     py: Python<'py>,
     text: &Bound<'py, PyAny>,
@@ -333,13 +383,15 @@ pub fn import_wbt_text<'py>(
     controller: Option<Text>,
     robot_line: Option<IntArg>,
     imported_from: Option<IntArg>,
+    wall_reds: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<(PyWorld, Bound<'py, PyDict>)> {
     enter(|| {
         let text = typed_argument::<PyString>(text, "text", "a str")?;
         let text = text.to_string_lossy();
         let source = source.value("source", "a str")?.0;
         let robot = (controller, robot_line, imported_from);
-        import_chosen(py, robot, floor_images, Path::new(&source), |choice| {
+        let textures = (floor_images, wall_reds);
+        import_chosen(py, robot, textures, Path::new(&source), |choice| {
             WbtImport::from_text_for(&text, &source, choice)
         })
     })

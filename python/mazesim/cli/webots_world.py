@@ -347,6 +347,7 @@ def run_world_command(args: argparse.Namespace, out: TextIO) -> int:
             "missing_features": list(robot.missing),
             "imported_at_s": robot.imported_s,
             "removed_at_s": robot.removed_s,
+            "controller_restarts_s": list(robot.restarts_s),
         }
         for robot in run.robots
     ]

@@ -270,12 +270,13 @@ class Field(NotSimulated):
             node._place(translation=(x, y, z))
 
     def c_sf_rotation(self) -> list[float] | None:
-        """The node's rotation as axis and angle (the robot's is live: [0, 0, 1, yaw])."""
+        """The node's rotation as axis and angle (the robot's is live: [0, 0, 1, yaw], the yaw in
+        (-pi, pi], so that a half turn set reads back as the half turn, not as -pi)."""
         if self._name != "rotation":
             self._wrong("get_sf_rotation")
             return None
         node = self._node
-        live = [0.0, 0.0, 1.0, node._field_pose()[2]] if node._live else None
+        live = [0.0, 0.0, 1.0, _half_open(node._field_pose()[2])] if node._live else None
         rotation = live or list(node._rotation or ())
         return [*_out(rotation[:3]), rotation[3]] if rotation else rotation
 
@@ -523,6 +524,17 @@ def _field_number(value: Any, where: str, integer: bool) -> Any:
             f"magnitude, found {value!r}"
         )
     return number
+
+
+#: How far below -pi a yaw may be and still be read as the half turn pi: the simulator keeps
+#: headings in single precision, whose step near pi is 2.4e-7.
+_HALF_TURN_TOLERANCE = 1e-6
+
+
+def _half_open(yaw: float) -> float:
+    """``yaw`` wrapped into (-pi, pi], a heading within single precision of -pi read as pi."""
+    wrapped = math.remainder(yaw, math.tau)
+    return wrapped + math.tau if wrapped <= -math.pi + _HALF_TURN_TOLERANCE else wrapped
 
 
 def _yaw_of_rotation(rotation: list[float]) -> float:

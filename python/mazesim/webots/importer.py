@@ -35,6 +35,7 @@ __all__ = [
     "CircleObstacle",
     "ExtensionDevice",
     "FloorTexture",
+    "WallTexture",
     "ImportReport",
     "RobotPose",
     "WorldRobot",
@@ -124,6 +125,18 @@ class FloorTexture(TypedDict):
     candidates: list[str]
 
 
+class WallTexture(TypedDict):
+    """An image texture of a wall's appearance: the red the appearance gives a white texture,
+    its roughness, and the files looked for (its image's mean red sets the wall's infra-red
+    reflection factor)."""
+
+    urls: list[str]
+    owner: str
+    red: float
+    roughness: float
+    candidates: list[str]
+
+
 class WorldRobot(TypedDict):
     """A robot of the world file, as listed in the report's ``robots``: its start ``pose``,
     ``model``, the ``profile`` that simulates it (``None`` for a robot that is not an e-puck:
@@ -174,6 +187,7 @@ class ImportReport(TypedDict):
     robots: list[WorldRobot]
     extension_devices: list[ExtensionDevice]
     floor_textures: list[FloorTexture]
+    wall_textures: list[WallTexture]
     floor_paint: int
     protos: ProtoReport
     recognition: RecognitionReport
@@ -207,6 +221,39 @@ def grey_levels(path: str) -> npt.NDArray[np.float64]:
     with open_input(path, "the floor texture") as raw, Image.open(raw) as image:
         grey = image.convert("L")
     return np.ascontiguousarray(np.asarray(grey, dtype=np.float64) / 255.0)
+
+
+def mean_red(path: str) -> float:
+    """The mean red of an image file (PNG, JPEG, ...) in [0, 1]: what Webots' infra-red
+    sensors read of a wall textured with it, on average over its surface.
+
+    Raises:
+        OSError: The file cannot be read or decoded.
+    """
+    from PIL import Image
+
+    with open_input(path, "the wall texture") as raw, Image.open(raw) as image:
+        red = np.asarray(image.convert("RGB"), dtype=np.float64)[:, :, 0]
+    return float(min(max(red.mean() / 255.0, 0.0), 1.0))
+
+
+def _wall_reds(report: dict[str, Any]) -> tuple[dict[str, float], list[str]]:
+    """The mean reds of the report's wall textures (the first candidate file that exists), and
+    a warning for each file that exists but cannot be decoded."""
+    reds: dict[str, float] = {}
+    problems: list[str] = []
+    for texture in report.get("wall_textures") or []:
+        for candidate in [c for c in texture["candidates"] if os.path.isfile(c)][:1]:
+            if candidate in reds:
+                continue
+            try:
+                reds[candidate] = mean_red(candidate)
+            except OSError as error:
+                problems.append(
+                    f"{texture['owner']}: wall texture {candidate}: expected a PNG or JPEG "
+                    f"image, cannot decode it ({error}); the wall reflects as white"
+                )
+    return reds, problems
 
 
 def _floor_images(
@@ -277,15 +324,19 @@ def undownloaded_textures(warnings: list[str]) -> list[str]:
 
 def _with_floor(
     imported: tuple[World, dict[str, Any]],
-    again: Callable[[dict[str, npt.NDArray[np.float64]]], tuple[World, dict[str, Any]]],
+    again: Callable[
+        [dict[str, npt.NDArray[np.float64]], dict[str, float]], tuple[World, dict[str, Any]]
+    ],
     resolver: Resolver | None = None,
 ) -> tuple[World, ImportReport]:
-    """Imports again with the floor textures' images when any was found (``webots://`` and
-    http(s) ones through the world's ``resolver``)."""
+    """Imports again with the floor textures' images (``webots://`` and http(s) ones through
+    the world's ``resolver``) and the wall textures' mean reds when any was found."""
     world, report = imported
     images, problems = _floor_images(report, resolver)
-    if images:
-        world, report = again(images)
+    reds, unread = _wall_reds(report)
+    if images or reds:
+        world, report = again(images, reds)
+    problems += unread
     warnings: list[str] = report["warnings"]
     for problem in problems:
         # A texture that could not be downloaded is said once, with why, where the import
@@ -336,8 +387,12 @@ def import_wbt(
     if text is None:  # not UTF-8 or not readable: the core says why, with the place
         world, report = _with_floor(
             _core.import_wbt(file, controller=controller, robot_line=robot_line),
-            lambda images: _core.import_wbt(
-                file, floor_images=images, controller=controller, robot_line=robot_line
+            lambda images, reds: _core.import_wbt(
+                file,
+                floor_images=images,
+                controller=controller,
+                robot_line=robot_line,
+                wall_reds=reds,
             ),
         )
         report["recognition"] = {"cameras": [], "objects": []}
@@ -392,7 +447,7 @@ def import_wbt_text(
 
     expanded, protos = expand_world(text, source)
 
-    def imported(images: Any = None) -> tuple[World, dict[str, Any]]:
+    def imported(images: Any = None, reds: Any = None) -> tuple[World, dict[str, Any]]:
         return _core.import_wbt_text(
             expanded,
             source,
@@ -400,6 +455,7 @@ def import_wbt_text(
             controller=controller,
             robot_line=robot_line,
             imported_from=imported_from,
+            wall_reds=reds,
         )
 
     world, report = _with_floor(imported(), imported, world_resolver(text, source))

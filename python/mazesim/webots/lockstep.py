@@ -121,6 +121,8 @@ class RobotRun:
         imported_s: When a supervisor imported it (s), or None for a robot of the world file;
             its path starts there.
         removed_s: When a supervisor removed it (s), or None; its path ends there.
+        restarts_s: When a supervisor restarted its controller (s), each time; what the
+            run's other attributes say of the controller is the last process's.
     """
 
     index: int
@@ -141,6 +143,7 @@ class RobotRun:
     missing: tuple[str, ...] = ()
     imported_s: float | None = None
     removed_s: float | None = None
+    restarts_s: list[float] = field(default_factory=list)
 
 
 @dataclass
@@ -206,6 +209,9 @@ class Fleet:
         #: start, and end).
         self.joined: list[int] = []
         self.left: list[int] = []
+        #: The robots whose controllers a supervisor asked to restart since the run last took
+        #: note (each one's process ends and a new one starts).
+        self.restarts: list[int] = []
         #: The running world's description as a supervisor last changed it, which the
         #: controllers of the robots it imports read, and the world file's number of lines
         #: (the imported nodes' come after them).
@@ -288,6 +294,15 @@ class Fleet:
         self._simulators[index].set_pose_pushed_out(x, y, yaw)
         self.moved.add(index)
         self._before[1].pop(index, None)
+
+    def restart_controller(self, index: int) -> bool:
+        """Asks for robot ``index``'s controller to be restarted (as Webots'
+        ``wb_supervisor_node_restart_controller``); False for a robot removed."""
+        if index in self.gone or not 0 <= index < len(self._simulators):
+            return False
+        if index not in self.restarts:
+            self.restarts.append(index)
+        return True
 
     def set_custom_data(self, index: int, text: str) -> None:
         """Notes a supervisor's write of a robot's ``customData`` field, which the robot's
@@ -632,10 +647,11 @@ def run_world(
         robots, simulators, dict(report, path=os.path.abspath(world_path)), seed=seed, noise=noise
     )
 
-    def joined(index: int) -> tuple[RobotRun, ControllerJob | None]:
-        """The run and controller job of robot ``index``, which a supervisor imported: its
-        controller has what is left of the run's ``seconds`` of world time, as Webots' one
-        simulation clock ends every robot's run together."""
+    def joined(index: int, restart: bool = False) -> tuple[RobotRun, ControllerJob | None]:
+        """The run and controller job of robot ``index``, which a supervisor imported or whose
+        controller it restarted: its controller has what is left of the run's ``seconds`` of
+        world time, as Webots' one simulation clock ends every robot's run together. A
+        restarted controller's robot keeps its body and wheels as they are."""
         imported_s = float(simulators[index].time)
         left = max(seconds - imported_s, 1e-9)
         run, job = _robot_run(
@@ -643,7 +659,8 @@ def run_world(
         )
         run.imported_s = imported_s
         robot, text = robots[index], fleet.text or ""  # the world as the import changed it
-        traction.join(index, robot, read_scene(text, robot.get("model"), robot["line"]))
+        if not restart:
+            traction.join(index, robot, read_scene(text, robot.get("model"), robot["line"]))
         if job is None:
             return run, None
         _, _, ready = _say_what_is_missing([run])
@@ -904,7 +921,7 @@ def _lockstep(
     runs: list[RobotRun],
     traction: WorldTraction,
     watch: Callable[[list[Any], Mapping[int, tuple[float, float]] | None], None] | None = None,
-    joined: Callable[[int], tuple[RobotRun, ControllerJob | None]] | None = None,
+    joined: Callable[..., tuple[RobotRun, ControllerJob | None]] | None = None,
 ) -> tuple[int, bool]:
     """Starts the controller processes and steps the world whenever every running controller
     has asked for the step; returns the number of steps and whether Ctrl-C ended the run.
@@ -938,7 +955,7 @@ def _lockstep(
                     break
                 for ready in wait(world.pending(), timeout=_POLL_SECONDS):
                     world.serve(ready)
-                    if joined is not None and (fleet.joined or fleet.left):
+                    if joined is not None and (fleet.joined or fleet.left or fleet.restarts):
                         world.regroup(processes, joined)
                 wheels = world.wheels
                 if wheels and (world.over or world.live <= set(wheels)):
@@ -968,7 +985,7 @@ def _lockstep(
                     wheels.clear()
     finally:
         processes.finish(exit_wait)
-        for connection in connections.values():
+        for connection in [*connections.values(), *world.retired.values()]:
             connection.close()
     return steps, deadline is not None
 
@@ -995,6 +1012,10 @@ class _Pipes:
         self.live = set(connections)
         #: The controllers of removed robots, whose ``Robot.step`` returns -1 until they end.
         self.leaving: set[int] = set()
+        #: The processes of restarted controllers, by their pipe: each one's ``Robot.step``
+        #: returns -1 until it ends, while its robot's new controller runs (a robot may have
+        #: several processes, the bookkeeping is the process's).
+        self.retired: dict[int, Any] = {}
         self.wheels: dict[int, tuple[float, float]] = {}
         #: Each robot's own ``setCustomData`` sent with the step it asked for.
         self.own_custom_data: dict[int, str] = {}
@@ -1002,15 +1023,34 @@ class _Pipes:
 
     def pending(self) -> list[Any]:
         """The pipes of the controllers that still run."""
-        return [self.connections[i] for i in sorted(self.live | self.leaving)]
+        running = [self.connections[i] for i in sorted(self.live | self.leaving)]
+        return running + list(self.retired.values())
 
     def regroup(
         self,
         processes: ControllerProcesses,
-        joined: Callable[[int], tuple[RobotRun, ControllerJob | None]],
+        joined: Callable[..., tuple[RobotRun, ControllerJob | None]],
     ) -> None:
         """Starts the controllers of the robots a supervisor imported (each steps from the
-        next step on, the world waiting for it) and ends those of the robots it removed."""
+        next step on, the world waiting for it), ends those of the robots it removed, and
+        restarts those it asked to: the running process is answered the end at its step, as a
+        removed robot's, and a new one starts at once with what is left of the run's time."""
+        for index in self.fleet.restarts:
+            if index in self.fleet.left:
+                continue
+            if index in self.live:
+                old = self.connections[index]
+                self.retired[id(old)] = old
+                self.live.discard(index)
+                if self.wheels.pop(index, None) is not None:
+                    old.send(("ok", (True, None)))
+            restarted, job = joined(index, True)
+            run = self.runs[index]
+            run.restarts_s.append(float(self.simulators[index].time))
+            run.controller, run.note = restarted.controller, restarted.note
+            if job is not None:
+                self._start(processes, index, job)
+        self.fleet.restarts.clear()
         for index in self.fleet.left:
             self.runs[index].removed_s = float(self.fleet.clock())
             if index in self.live:
@@ -1027,15 +1067,22 @@ class _Pipes:
             self.runs.append(run)
             self.movable.append(self.fleet.robots_of([index])[0].get("profile") is not None)
             if job is not None:
-                connection = processes.start(job)
-                self.connections[index] = connection  # type: ignore[index]
-                self.by_connection[id(connection)] = index
-                self.live.add(index)
+                self._start(processes, index, job)
         self.fleet.joined.clear()
+
+    def _start(self, processes: ControllerProcesses, index: int, job: ControllerJob) -> None:
+        """Starts robot ``index``'s controller process for ``job``; the world waits for it."""
+        connection = processes.start(job)
+        self.connections[index] = connection  # type: ignore[index]
+        self.by_connection[id(connection)] = index
+        self.live.add(index)
 
     def serve(self, ready: Any) -> None:
         """Reads one message of a controller's pipe and answers a call, notes a step's wheel
         speeds, or notes the controller's end (a supervisor's quit ends the run)."""
+        if id(ready) in self.retired:
+            self._serve_retired(ready)
+            return
         index = self.by_connection[id(ready)]
         run = self.runs[index]
         try:
@@ -1049,13 +1096,7 @@ class _Pipes:
                 sys.stderr.write(f"mazesim: robot {run.name!r}: {run.error}")
             return
         if message[0] == "call":
-            _, target, name, args = message
-            targets = {
-                "simulator": self.simulators[index],
-                "radio": self.radio,
-                "fleet": self.fleet,
-            }
-            ready.send(answer(targets[target], name, args))
+            self._answer(ready, index, message)
         elif message[0] == "step" and index in self.leaving:
             ready.send(("ok", (True, None)))
         elif message[0] == "step":
@@ -1069,6 +1110,27 @@ class _Pipes:
                 setattr(run, key, summary[key])
             run.quit_requested = bool(summary["quit_requested"])
             self.over = self.over or run.quit_requested
+
+    def _serve_retired(self, ready: Any) -> None:
+        """Reads one message of a restarted controller's old process: its calls are answered,
+        its steps with the end, and its end (or its pipe's) forgets it."""
+        index = self.by_connection[id(ready)]
+        try:
+            message: Any = ready.recv()
+        except (EOFError, OSError):
+            message = ("done", None)
+        if message[0] == "call":
+            self._answer(ready, index, message)
+        elif message[0] == "step":
+            ready.send(("ok", (True, None)))
+        elif message[0] == "done":
+            del self.retired[id(ready)]
+
+    def _answer(self, ready: Any, index: int, message: Any) -> None:
+        """Answers robot ``index``'s controller's call ``message`` on its pipe ``ready``."""
+        _, target, name, args = message
+        targets = {"simulator": self.simulators[index], "radio": self.radio, "fleet": self.fleet}
+        ready.send(answer(targets[target], name, args))
 
     def _ended(self, index: int) -> None:
         self.live.discard(index)

@@ -251,8 +251,12 @@ class RobotSimulation:
         self._yaw = float(self.simulator.pose[2])
         self._distance: npt.NDArray[np.float32] | None = None
         self._ground: npt.NDArray[np.float32] | None = None
-        #: The world's last reset (a supervisor's ``simulationReset``) this robot knows of.
-        self.last_reset = WorldReset()
+        #: The world's last reset (a supervisor's ``simulationReset``) this robot knows of: in
+        #: a world run, the world's last one when the controller starts (a controller started
+        #: after a reset, restarted or of a robot imported, does not reset its devices for it).
+        self.last_reset: WorldReset = (
+            WorldReset() if fleet is None else fleet.last_reset(robot_index)
+        )
         self.reset_listeners: list[Callable[[], None]] = []
         #: Whether a supervisor of this run of one robot asked for a reset, which the next step
         #: applies at its end.

@@ -500,8 +500,20 @@ class Node(NotSimulated):
             self._simulation().velocity = (0.0, 0.0, 0.0)
 
     def restartController(self) -> None:
-        """Webots' error: the running controller cannot be restarted."""
-        _print_error("Error: wb_supervisor_node_restart_controller() is not available in mazesim.")
+        """Restarts the controller of another robot of a world run (``mazesim webots run
+        WORLD``): its process sees ``Robot.step`` return -1, as when Webots ends a controller,
+        and a new process of the same controller starts at once, on the robot where it is
+        (:mod:`mazesim.webots.lockstep`). The supervisor's own controller, and a run of one
+        controller (no other controller runs), answer Webots' error."""
+        fleet = self._simulation().fleet
+        own = self._fleet_index == self._simulation().robot_index
+        if fleet is not None and self._fleet_index is not None and not own:
+            if fleet.restart_controller(self._fleet_index):
+                return
+        _print_error(
+            "Error: wb_supervisor_node_restart_controller() is not available in mazesim for "
+            f"{self._label()}: only another robot's controller of a world run restarts."
+        )
 
     def getContactPoints(self, includeDescendants: bool = False) -> list[ContactPoint]:
         """The robot's contact with a wall, if it touches one (its centre stands for it)."""
@@ -939,7 +951,16 @@ class Supervisor(Robot):
         return True
 
     def exportImage(self, filename: str, quality: int) -> None:
-        """Accepted; there is no 3D view to export."""
+        """Writes the view of the world now to ``filename`` (relative to the controller's
+        folder), a PNG or, at ``quality`` (1 to 100), a JPEG by its extension: the top-down
+        frame that ``--video`` draws (:mod:`mazesim.webots.view_export`). Another extension,
+        a quality out of range or a file that cannot be written is refused with Webots' kind
+        of error, and nothing is written."""
+        from mazesim.webots.view_export import export_view
+
+        refused = export_view(self._simulation, str(filename), quality)
+        if refused is not None:
+            _print_error(refused)
 
     def virtualRealityHeadsetIsUsed(self) -> bool:
         """False."""

@@ -5,12 +5,20 @@ each node's ``translation`` and ``rotation`` where it is at that moment. The tex
 world file's as a supervisor changed it (:mod:`mazesim.webots.scene_edits`); :func:`with_fields`
 sets a node's fields in it, found by the line its node type is on, without moving any other
 line, so that the lines of the nodes after it stay where they were.
+
+The numbers are written as a person writes them: the shortest text that reads back as the same
+single-precision number Webots' fields hold (0.3, not 0.30000001192092896), and a field the
+node's text leaves out is added only where its value is not the field's default (a node standing
+where its defaults put it is written as it was), as Webots writes only the fields that differ
+from their defaults.
 """
 
 from __future__ import annotations
 
 import re
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
+
+import numpy as np
 
 __all__ = ["with_fields"]
 
@@ -20,16 +28,28 @@ _NUMBER = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")
 _WORD = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
 
 
+#: The value of a field the node's text may leave out, where it is its default.
+_DEFAULTS: dict[str, Callable[[Sequence[float]], bool]] = {
+    "translation": lambda values: all(_written(v) == "0" for v in values),
+    "rotation": lambda values: len(values) == 4 and _written(values[3]) == "0",
+}
+
+
 def _written(value: float) -> str:
-    """A number as the saved file writes it (the shortest text that reads back the same)."""
-    text = repr(float(value))
+    """A number as the saved file writes it: the shortest text that reads back as the same
+    single-precision number (``0`` for either zero)."""
+    single = np.float32(value)
+    if single == 0.0:
+        return "0"
+    text = str(single)
     return text[:-2] if text.endswith(".0") else text
 
 
 def with_fields(text: str, line: int, fields: Mapping[str, Sequence[float]]) -> str:
     """``text`` with each of ``fields`` of the node whose type is on ``line`` (1-based) set to
     its values: replaced number by number where the node gives the field itself (not inside a
-    node of one of its fields), written after the node's opening brace where it does not.
+    node of one of its fields), written after the node's opening brace where it does not and
+    the value is not the field's default.
     Every line stays a line: the numbers' spacing and line breaks are kept.
 
     A line holding no node (0, or beyond the text) leaves the text as it is.
@@ -68,7 +88,7 @@ def with_fields(text: str, line: int, fields: Mapping[str, Sequence[float]]) -> 
     missing = " ".join(
         f"{name} {' '.join(_written(v) for v in values)}"
         for name, values in fields.items()
-        if name not in given
+        if name not in given and not _DEFAULTS.get(name, lambda _: False)(values)
     )
     if missing:
         edited = edited[: opening + 1] + f" {missing}" + edited[opening + 1 :]

@@ -23,10 +23,19 @@
 //! its `colorOverride` (white without one), roughness 0.
 //!
 //! A collision shape reflects by its appearance when a camera sees its colour; one without a
-//! colour keeps the factor 1 of a white surface (a textured wall's colour is not read).
+//! colour keeps the factor 1 of a white surface. A wall whose first visible shape is textured
+//! (an `ImageTexture` of a `PBRAppearance`'s `baseColorMap` or an `Appearance`'s `texture`) is
+//! listed with its texture ([`WallTexture`]): when the caller reads the image (as floor
+//! textures are read) and hands in its mean red, [`WbtImport::shade_walls`] gives the wall the
+//! factor of that red times the appearance's own (the texture's colour multiplies the
+//! appearance's, as Webots picks it), with the appearance's roughness; without the image the
+//! wall stays white.
+
+use std::collections::BTreeMap;
 
 use super::import::Importer;
 use super::tree::Node;
+use super::WbtImport;
 
 /// Most nodes looked through for a Solid's first visible shape.
 const MAX_LOOKS: usize = 10_000;
@@ -38,6 +47,25 @@ pub struct Look {
     pub colour: Option<[f64; 3]>,
     /// The reflection factor of Webots' infra-red sensors (see the module).
     pub reflectance: f64,
+    /// The index of its texture in [`WbtImport::wall_textures`], for a textured shape whose
+    /// colour the import does not read.
+    pub texture: Option<usize>,
+}
+
+/// An image texture of a wall's appearance, as found in the world (see the module).
+#[derive(Debug, Clone, PartialEq)]
+pub struct WallTexture {
+    /// The `url` entries of the `ImageTexture`, in order.
+    pub urls: Vec<String>,
+    /// `line L: Shape` of the textured shape.
+    pub owner: String,
+    /// The red the appearance gives a white texture (its colour's red times `1 -
+    /// transparency`), which the image's mean red multiplies.
+    pub red: f64,
+    /// The appearance's roughness.
+    pub roughness: f64,
+    /// Files to look for, in order, as a floor texture's.
+    pub candidates: Vec<String>,
 }
 
 /// How a movable body looks to a camera: its colour (`None`: the grey of its reflectance),
@@ -59,6 +87,7 @@ impl Look {
     pub const UNREAD: Look = Look {
         colour: None,
         reflectance: 1.0,
+        texture: None,
     };
 }
 
@@ -115,7 +144,14 @@ impl<'d> Importer<'d> {
     /// The reflection factor Webots' infra-red sensors give a shape of an appearance node (see
     /// the module).
     pub fn appearance_node_reflectance(&mut self, appearance: &'d Node) -> f64 {
-        let (red, roughness) = match appearance.type_name.as_str() {
+        let (red, roughness) = self.appearance_red(appearance);
+        reflection_factor(red, roughness, 0.0)
+    }
+
+    /// The red an appearance node gives the infra-red sensors (a texture counted white) and
+    /// its roughness (see the module).
+    fn appearance_red(&mut self, appearance: &'d Node) -> (f64, f64) {
+        match appearance.type_name.as_str() {
             "PBRAppearance" => {
                 let base = self.vector(appearance, "baseColor", [1.0; 3])[0];
                 let transparency = self.number(appearance, "transparency", 0.0);
@@ -136,8 +172,33 @@ impl<'d> Importer<'d> {
                 None => (1.0, 0.0),
             },
             _ => (self.vector(appearance, "colorOverride", [1.0; 3])[0], 0.0),
+        }
+    }
+
+    /// The look of a Shape whose appearance is a `PBRAppearance` or an `Appearance` with an
+    /// `ImageTexture` of a url: white, its texture listed in `wall_textures`.
+    fn textured_look(&mut self, shape: &'d Node) -> Option<Look> {
+        let &appearance = self.nodes(shape, "appearance").first()?;
+        let appearance = self.node(appearance);
+        let field = match appearance.type_name.as_str() {
+            "PBRAppearance" => "baseColorMap",
+            "Appearance" => "texture",
+            _ => return None,
         };
-        reflection_factor(red, roughness, 0.0)
+        let urls = self.image_texture_urls(appearance, field)?;
+        let (red, roughness) = self.appearance_red(appearance);
+        let owner = self.label(shape);
+        self.wall_textures.push(WallTexture {
+            urls,
+            owner,
+            red,
+            roughness,
+            candidates: Vec::new(),
+        });
+        Some(Look {
+            texture: Some(self.wall_textures.len() - 1),
+            ..Look::UNREAD
+        })
     }
 
     /// The reflection factor of a Shape's appearance (1, white, without one).
@@ -164,6 +225,7 @@ impl<'d> Importer<'d> {
         Some(Look {
             colour: Some(colour),
             reflectance: self.appearance_node_reflectance(appearance),
+            texture: None,
         })
     }
 
@@ -176,6 +238,18 @@ impl<'d> Importer<'d> {
     }
 
     fn solid_seen_look(&mut self, solid: &'d Node) -> Option<Look> {
+        let mut textured = None;
+        let look = self.solid_coloured_look(solid, &mut textured);
+        look.or(textured)
+    }
+
+    /// [`Importer::solid_look`] of the shapes whose colour a camera sees; the look of the
+    /// first textured shape met on the way goes into `textured`.
+    fn solid_coloured_look(
+        &mut self,
+        solid: &'d Node,
+        textured: &mut Option<Look>,
+    ) -> Option<Look> {
         let mut stack: Vec<&'d Node> = self
             .nodes(solid, "children")
             .iter()
@@ -193,6 +267,9 @@ impl<'d> Importer<'d> {
                     if let Some(look) = self.field_look(node, "appearance") {
                         return Some(look);
                     }
+                    if textured.is_none() {
+                        *textured = self.textured_look(node);
+                    }
                 }
                 "Pose" | "Transform" | "Group" => {
                     let children = self.nodes(node, "children");
@@ -204,7 +281,11 @@ impl<'d> Importer<'d> {
         let &bounding = self.nodes(solid, "boundingObject").first()?;
         let bounding = self.node(bounding);
         if bounding.type_name == "Shape" {
-            return self.field_look(bounding, "appearance");
+            let look = self.field_look(bounding, "appearance");
+            if look.is_none() && textured.is_none() {
+                *textured = self.textured_look(bounding);
+            }
+            return look;
         }
         None
     }
@@ -225,6 +306,34 @@ impl<'d> Importer<'d> {
     pub fn floor_colour_of(&mut self, node: &'d Node, field: &str) {
         if self.floor_colour.is_none() {
             self.floor_colour = self.field_colour(node, field);
+        }
+    }
+}
+
+impl WbtImport {
+    /// Gives each textured wall the reflection factor of its texture's image, given as the
+    /// image's mean red in [0, 1] keyed by the candidate file it was read from (the first
+    /// candidate found counts): `f = 0.2 + 0.8 (mean red x the appearance's red) (1 - 0.5
+    /// roughness)`. A wall whose texture has no image stays white. Call it once, after the
+    /// import.
+    pub fn shade_walls(&mut self, mean_reds: &BTreeMap<String, f64>) {
+        let factors: Vec<Option<f64>> = self
+            .wall_textures
+            .iter()
+            .map(|texture| {
+                let mean = texture.candidates.iter().find_map(|c| mean_reds.get(c))?;
+                Some(reflection_factor(
+                    mean * texture.red,
+                    texture.roughness,
+                    0.0,
+                ))
+            })
+            .collect();
+        let looks = self.obstacle_looks.iter_mut().chain(&mut self.sensed_looks);
+        for look in looks {
+            if let Some(Some(factor)) = look.texture.and_then(|k| factors.get(k)) {
+                look.reflectance = *factor;
+            }
         }
     }
 }
@@ -258,6 +367,34 @@ mod tests {
 
     fn reflectance_with(appearance: &str) -> f64 {
         look_with(appearance).reflectance
+    }
+
+    #[test]
+    fn a_textured_wall_reflects_by_its_image_s_mean_red_once_given() {
+        let mut w = import(
+            "#VRML_SIM R2023b utf8\nSolid { translation 0.3 0 0.05 children [ Shape { \
+             appearance PBRAppearance { baseColor 0.5 1 1 roughness 1 baseColorMap ImageTexture { \
+             url [ \"bricks.png\" ] } } geometry Box { size 0.1 0.1 0.1 } } ] \
+             boundingObject Box { size 0.1 0.1 0.1 } }\n",
+        );
+        let [texture] = w.wall_textures.as_slice() else {
+            panic!("{:?}", w.wall_textures)
+        };
+        assert_eq!(texture.urls, ["bricks.png"]);
+        assert_eq!(texture.candidates, ["bricks.png", "textures/bricks.png"]);
+        assert_eq!((texture.red, texture.roughness), (0.5, 1.0));
+        // Without its image the wall is white, as before.
+        assert_eq!(w.obstacle_looks[0].reflectance, 1.0);
+        let other = [("elsewhere.png".to_string(), 0.0)].into_iter().collect();
+        w.shade_walls(&other);
+        assert_eq!(w.obstacle_looks[0].reflectance, 1.0);
+        let found = [("textures/bricks.png".to_string(), 0.8)]
+            .into_iter()
+            .collect();
+        w.shade_walls(&found);
+        // 0.2 + 0.8 * (0.8 * 0.5) * (1 - 0.5 * 1).
+        assert!((w.obstacle_looks[0].reflectance - 0.36).abs() < 1e-12);
+        assert!((w.to_spec("textured").walls[0].reflectance.0 - 0.36).abs() < 1e-12);
     }
 
     #[test]

@@ -272,27 +272,57 @@ impl WbtImport {
         self.paint.extend(marks);
     }
 
-    /// Fills each texture's candidate files for a world file in `dir`.
+    /// Fills each texture's candidate files (the floor's and the walls') for a world file in
+    /// `dir`.
     pub(super) fn locate_textures(&mut self, dir: &Path) {
         for texture in &mut self.floor_textures {
-            let mut candidates = Vec::new();
-            for url in &texture.urls {
-                let file = url.rsplit('/').next().unwrap_or(url);
-                let is_web = url.contains("://");
-                if !is_web && !url.is_empty() {
-                    candidates.push(dir.join(url).display().to_string());
-                }
-                if !file.is_empty() {
-                    candidates.push(dir.join("textures").join(file).display().to_string());
-                }
-            }
-            candidates.dedup();
-            texture.candidates = candidates;
+            texture.candidates = texture_candidates(dir, &texture.urls);
+        }
+        for texture in &mut self.wall_textures {
+            texture.candidates = texture_candidates(dir, &texture.urls);
         }
     }
 }
 
+/// The files an image texture of `urls` is looked for in, for a world file in `dir`: each url
+/// beside the world file (not a web one), then its file name in `textures/` beside it.
+fn texture_candidates(dir: &Path, urls: &[String]) -> Vec<String> {
+    let mut candidates = Vec::new();
+    for url in urls {
+        let file = url.rsplit('/').next().unwrap_or(url);
+        let is_web = url.contains("://");
+        if !is_web && !url.is_empty() {
+            candidates.push(dir.join(url).display().to_string());
+        }
+        if !file.is_empty() {
+            candidates.push(dir.join("textures").join(file).display().to_string());
+        }
+    }
+    candidates.dedup();
+    candidates
+}
+
 impl<'d> Importer<'d> {
+    /// The urls of the `ImageTexture` in the field `field` of an appearance node; `None`
+    /// without one, or when its urls are all empty (what Webots' scene tree leaves when a
+    /// texture is cleared, which loads no image in Webots: no texture, and nothing to warn of).
+    pub(super) fn image_texture_urls(
+        &mut self,
+        appearance: &'d Node,
+        field: &str,
+    ) -> Option<Vec<String>> {
+        let texture = self
+            .nodes(appearance, field)
+            .iter()
+            .map(|&id| self.node(id))
+            .find(|n| n.type_name == "ImageTexture")?;
+        let urls = self.strings(texture, "url").to_vec();
+        if urls.iter().all(|url| url.trim().is_empty()) {
+            return None;
+        }
+        Some(urls)
+    }
+
     /// The `ImageTexture` urls of an appearance (`PBRAppearance.baseColorMap`,
     /// `Appearance.texture`) and its `textureTransform` scale; `None` when it has no texture
     /// with a url.
@@ -308,17 +338,7 @@ impl<'d> Importer<'d> {
                 return None;
             }
         };
-        let texture = self
-            .nodes(appearance, field)
-            .iter()
-            .map(|&id| self.node(id))
-            .find(|n| n.type_name == "ImageTexture")?;
-        let urls = self.strings(texture, "url").to_vec();
-        // An ImageTexture whose urls are all empty (what Webots' scene tree leaves when a
-        // texture is cleared) loads no image in Webots: no texture, and nothing to warn of.
-        if urls.iter().all(|url| url.trim().is_empty()) {
-            return None;
-        }
+        let urls = self.image_texture_urls(appearance, field)?;
         let scale = self
             .nodes(appearance, "textureTransform")
             .first()

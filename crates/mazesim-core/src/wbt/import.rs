@@ -2,6 +2,7 @@
 //! `WorldInfo`, the robot's start pose and the budget that keeps a hostile file bounded.
 //! Collision shapes are in `shapes.rs`, PROTO expansions in `protos.rs`.
 
+use super::appearance::WallTexture;
 use super::appearance::{BodyLook, Look};
 use super::devices::ExtensionDevice;
 use super::floor_marks::FloorMesh;
@@ -141,6 +142,8 @@ pub struct Importer<'d> {
     pub robots: Vec<(WorldRobot, Vec<ColouredObstacle>, Vec<Vec<usize>>)>,
     pub devices: Vec<ExtensionDevice>,
     pub floor_textures: Vec<FloorTexture>,
+    /// The textures of walls' appearances (see `appearance.rs`).
+    pub wall_textures: Vec<WallTexture>,
     /// Paint of the visual-only shapes lying on the floor (see `floor_marks.rs`).
     pub floor_marks: Vec<crate::world::spec::PaintSpec>,
     /// Meshes of visual-only shapes, read after the walk.
@@ -216,6 +219,7 @@ fn walk<'d>(
         robots: Vec::new(),
         devices: Vec::new(),
         floor_textures: Vec::new(),
+        wall_textures: Vec::new(),
         floor_marks: Vec::new(),
         floor_meshes: Vec::new(),
         bounded: false,
@@ -290,6 +294,7 @@ fn finish((mut importer, basic_time_step_ms): (Importer<'_>, f64)) -> WbtImport 
         robots,
         extension_devices: importer.devices,
         floor_textures: importer.floor_textures,
+        wall_textures: importer.wall_textures,
         floor_meshes: importer.floor_meshes,
         paint: importer.floor_marks,
         basic_time_step_ms,

@@ -58,7 +58,7 @@ use std::path::Path;
 
 use crate::error::{Error, Result};
 
-pub use appearance::{reflection_factor, BodyLook, Look};
+pub use appearance::{reflection_factor, BodyLook, Look, WallTexture};
 pub use convert::polygon_sides;
 pub use devices::{DeviceField, ExtensionDevice};
 pub use floor_marks::{obj_triangles, FloorMesh};
@@ -178,6 +178,9 @@ pub struct WbtImport {
     pub extension_devices: Vec<ExtensionDevice>,
     /// Image textures on the floor, painted by [`WbtImport::paint_floor`].
     pub floor_textures: Vec<FloorTexture>,
+    /// Image textures of walls' appearances, which [`WbtImport::shade_walls`] reads the
+    /// infra-red reflection factor of (see `appearance.rs`).
+    pub wall_textures: Vec<WallTexture>,
     /// Meshes of visual-only shapes (`Mesh` in a `Shape` that no `Solid` with a
     /// `boundingObject` owns), painted on the floor when they lie on it; read by the import.
     pub floor_meshes: Vec<FloorMesh>,

@@ -1,0 +1,96 @@
+"""A supervisor restarts another robot's controller in a world run, as Webots'
+``wb_supervisor_node_restart_controller`` does: that controller's ``Robot.step`` returns -1, and
+a new process of it starts at once on the robot where it stands, with the world's clock going on
+(#33)."""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import pytest
+
+from mazesim.webots.lockstep import run_world
+from supervised_world import project_of
+
+#: A supervisor without a body and an e-puck runner.
+WORLD = """#VRML_SIM R2023b utf8
+WorldInfo { basicTimeStep 32 }
+Robot { name "boss" controller "restarter" supervisor TRUE }
+DEF RUNNER E-puck { translation -0.5 0 0 name "runner" controller "runner" }
+"""
+
+#: Notes each start (its clock) and how its run ended, drives 10 steps at 5 rad/s and stands.
+RUNNER = """import json
+import math
+
+from controller import Robot
+
+robot = Robot()
+step = int(robot.getBasicTimeStep())
+with open("starts.json", "a") as out:
+    out.write(json.dumps({"started_s": robot.getTime()}) + "\\n")
+wheels = [robot.getDevice(name) for name in ("left wheel motor", "right wheel motor")]
+for wheel in wheels:
+    wheel.setPosition(math.inf)
+    wheel.setVelocity(5.0)
+steps = 0
+while robot.step(step) != -1:
+    steps += 1
+    if steps == 10:
+        for wheel in wheels:
+            wheel.setVelocity(0.0)
+with open("starts.json", "a") as out:
+    out.write(json.dumps({"ended_s": robot.getTime(), "steps": steps}) + "\\n")
+"""
+
+#: Restarts the runner's controller after its 20th step, and tries its own after the 30th.
+RESTARTER = """from controller import Supervisor
+
+boss = Supervisor()
+step = int(boss.getBasicTimeStep())
+steps = 0
+while boss.step(step) != -1:
+    steps += 1
+    if steps == 20:
+        boss.getFromDef("RUNNER").restartController()
+    if steps == 30:
+        boss.getSelf().restartController()
+"""
+
+STEP_S = 0.032
+
+
+def test_another_robot_s_controller_restarts_where_its_robot_stands(
+    tmp_path: Path, capfd: pytest.CaptureFixture[str]
+) -> None:
+    world = project_of(tmp_path, "restart.wbt", WORLD, {"restarter": RESTARTER, "runner": RUNNER})
+    boss, runner = run_world(str(world), seconds=1.6, noise=False).robots
+    assert [boss.exit_status, runner.exit_status] == [0, 0], [boss.error, runner.error]
+    err = capfd.readouterr().err
+    # Only the supervisor's own controller is refused.
+    assert err.count("wb_supervisor_node_restart_controller() is not available") == 1
+    assert "node Robot" in err and "node E-puck" not in err
+    notes = [
+        json.loads(line)
+        for line in (tmp_path / "controllers" / "runner" / "starts.json").read_text().splitlines()
+    ]
+    assert [list(note) for note in notes] == [
+        ["started_s"],
+        ["ended_s", "steps"],
+        ["started_s"],
+        ["ended_s", "steps"],
+    ]
+    first_start, first_end, second_start, second_end = notes
+    assert first_start["started_s"] == 0.0
+    # The first process's step after the restart returns -1; the second starts on the world's
+    # clock and steps to the run's end.
+    assert first_end["ended_s"] == pytest.approx(20 * STEP_S)
+    assert second_start["started_s"] == pytest.approx(20 * STEP_S)
+    assert second_end == {"ended_s": pytest.approx(50 * STEP_S), "steps": 50 - 20}
+    assert runner.restarts_s == [pytest.approx(20 * STEP_S)]
+    # Each process drove 10 steps from where the robot stood: twice the one run's way.
+    one_run = 10 * 5.0 * 0.02 * STEP_S
+    assert runner.final_pose[0] == pytest.approx(-0.5 + 2 * one_run, abs=2e-3)
+    assert math.isclose(runner.final_pose[1], 0.0, abs_tol=1e-3)
