@@ -102,7 +102,7 @@ def test_the_callers_own_exceptions_and_interrupts_are_left_alone() -> None:
     assert in_the_tree("f", refused, True) is refused
 
 
-def test_issue_35_a_value_quoted_at_length_is_shown_shortened() -> None:
+def test_a_value_quoted_at_length_is_shown_shortened() -> None:
     """Every message of the tree, the compiled core's too, is shown at most MOST_MESSAGE
     characters long, its start and end kept: a name of a million characters is quoted in a
     line, not whole."""

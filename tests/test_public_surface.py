@@ -345,7 +345,7 @@ def test_a_flood_of_output_or_a_message_quoting_a_value_whole_is_a_failure() -> 
     assert failures_of([plan], [{**flood, "printed": 100}]) == []
 
 
-def test_issue_35_every_text_parameter_quotes_a_long_text_shortened() -> None:
+def test_every_text_parameter_quotes_a_long_text_shortened() -> None:
     """Every entry point of a walk is given a text of 100,000 characters for its required
     parameters (long_text_calls): Webots' getDevice, whose "not found" line quoted it whole,
     and the compiled core's lookups by name among them."""

@@ -641,7 +641,7 @@ def test_a_stray_word_far_from_every_built_in_controller_is_told_none(
         ["demo", "--robot", "r" * 200_000, "--seconds", "0.1"],
     ],
 )
-def test_issue_35_a_word_of_200000_characters_is_quoted_shortened(
+def test_a_word_of_200000_characters_is_quoted_shortened(
     argv: list[str], tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
     """The usage error names the word by its start and end, in a message of a few lines."""
@@ -650,7 +650,7 @@ def test_issue_35_a_word_of_200000_characters_is_quoted_shortened(
     assert "characters ...]" in err and len(err) < 6000, len(err)
 
 
-def test_issue_35_a_wbt_of_one_5_mb_line_is_refused_in_a_short_message(
+def test_a_wbt_of_one_5_mb_line_is_refused_in_a_short_message(
     tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
     world = tmp_path / "one-line.wbt"

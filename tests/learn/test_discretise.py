@@ -65,7 +65,7 @@ def test_volts_to_cm_equals_the_core_inversion_bit_for_bit() -> None:
 
 
 @pytest.mark.parametrize("reading", [np.nan, np.inf, -np.inf, -0.5])
-def test_issue_35_the_vector_discretisers_refuse_what_the_scalar_one_refuses(
+def test_the_vector_discretisers_refuse_what_the_scalar_one_refuses(
     reading: float,
 ) -> None:
     """A reading no Sharp ranger gives (not a number, infinite, below 0 V) is refused by
@@ -81,7 +81,7 @@ def test_issue_35_the_vector_discretisers_refuse_what_the_scalar_one_refuses(
 
 
 @pytest.mark.parametrize("distance", [np.nan, -1.0])
-def test_issue_35_distance_levels_refuses_a_distance_below_0_cm_or_not_a_number(
+def test_distance_levels_refuses_a_distance_below_0_cm_or_not_a_number(
     distance: float,
 ) -> None:
     with pytest.raises(InvalidArgumentError, match="distances of 0 cm or more"):
@@ -92,7 +92,7 @@ def test_issue_35_distance_levels_refuses_a_distance_below_0_cm_or_not_a_number(
 @pytest.mark.parametrize(
     "values", [np.array([1.0 + 2.0j]), np.array([None]), np.array(["1.0"]), [[1.0], [1.0, 2.0]]]
 )
-def test_issue_35_numbers_that_are_not_real_are_no_readings(values: object) -> None:
+def test_numbers_that_are_not_real_are_no_readings(values: object) -> None:
     """numpy would drop an imaginary part, or read None as NaN, without a word."""
     for discretise in (volts_to_cm, distance_levels):
         with pytest.raises(InvalidArgumentError, match="expected"):

@@ -70,7 +70,7 @@ def test_time_step_name_and_devices(robot: Robot, capsys: pytest.CaptureFixture[
     assert 'Device "lidar" was not found on robot "e-puck"' in capsys.readouterr().err
 
 
-def test_issue_35_a_device_name_of_a_million_characters_is_quoted_shortened(
+def test_a_device_name_of_a_million_characters_is_quoted_shortened(
     robot: Robot, capsys: pytest.CaptureFixture[str]
 ) -> None:
     """Webots' "not found" line, and the closing line that lists the names asked for, quote a
