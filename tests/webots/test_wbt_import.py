@@ -253,6 +253,7 @@ def test_cli_json_layout(tmp_path: Path) -> None:
         "robots",
         "extension_devices",
         "floor_textures",
+        "wall_textures",
         "floor_paint",
         "protos",
         "recognition",

@@ -140,12 +140,14 @@ def test_a_robot_nested_three_deep_reads_its_world_pose_on_gps_and_compass(
     done, logs = run("nested_gps", tmp_path, 2.0)
     deep, top = logs["deep"], logs["top"]
     step = 4.0 * 0.02 * 0.032
-    assert deep["first"][:2] == pytest.approx([0.5, 0.3 + step], abs=1e-4)
+    back = 0.0095  # the GPS sits in the turret slot, 9.5 mm behind the robot's centre
+    assert deep["first"][:2] == pytest.approx([0.5, 0.3 + step - back], abs=1e-4)
     assert deep["first"][3] == pytest.approx(math.pi / 2, abs=1e-3)
-    assert deep["last"][:2] == pytest.approx([0.5, 0.3 + 40 * step], abs=1e-3)
-    assert top["last"][:2] == pytest.approx([-0.5 - 40 * step, 0.0], abs=1e-3)
+    assert deep["last"][:2] == pytest.approx([0.5, 0.3 + 40 * step - back], abs=1e-3)
+    assert top["last"][:2] == pytest.approx([-0.5 - 40 * step + back, 0.0], abs=1e-3)
     assert abs(top["last"][3]) == pytest.approx(math.pi, abs=1e-3)
-    assert done.robots[0].final_pose[:2] == pytest.approx(deep["last"][:2], abs=1e-6)
+    x, y, _ = done.robots[0].final_pose
+    assert [x, y - back] == pytest.approx(deep["last"][:2], abs=1e-6)
 
 
 def test_robots_steered_by_the_poses_a_supervisor_sends_reach_their_goals(
