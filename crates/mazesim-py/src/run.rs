@@ -336,7 +336,7 @@ pub fn lower_level_states<'py>(
             .chunks_exact(width)
             .flat_map(|row| &row[..sensors])
             .copied()
-            .filter(|&v| !(v >= 0.0 && v < f32::INFINITY))
+            .filter(|&v| !(0.0..f32::INFINITY).contains(&v))
             .fold(None, |quoted: Option<f32>, v| match quoted {
                 Some(q) if q.is_nan() || q <= v => Some(q),
                 _ => Some(v),
