@@ -143,3 +143,22 @@ def test_a_textured_wall_without_its_image_reflects_as_white(tmp_path: Path) -> 
     assert [o["reflectance"] for o in report["obstacles"]] == [1.0]
     readings, expected = front_readings(world, 1.0)
     assert readings == pytest.approx(expected, rel=0.02, abs=1.0)
+
+
+def test_a_wall_textured_by_a_webots_url_reflects_by_that_image(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    # Wall textures are found as floor textures are: a webots:// URL in the Webots installation.
+    from PIL import Image
+
+    monkeypatch.setenv("MAZESIM_PROTO_CACHE", str(tmp_path / "cache"))
+    monkeypatch.setenv("WEBOTS_HOME", str(tmp_path / "webots"))
+    name = "projects/default/worlds/textures/half_red.png"
+    (tmp_path / "webots" / name).parent.mkdir(parents=True)
+    image = np.zeros((8, 8, 3), dtype=np.uint8)
+    image[:, :4, 0] = 255
+    Image.fromarray(image).save(tmp_path / "webots" / name)
+    appearance = f'PBRAppearance {{ baseColorMap ImageTexture {{ url [ "webots://{name}" ] }} }}'
+    world_file = str(tmp_path / "project" / "worlds" / "w.wbt")
+    _, report = import_wbt_text(wall_ahead(appearance), world_file)
+    assert [o["reflectance"] for o in report["obstacles"]] == [pytest.approx(0.6)], report

@@ -16,7 +16,7 @@ import errno
 import os
 import re
 from collections.abc import Callable, Mapping
-from typing import TYPE_CHECKING, Any, Literal, TypedDict, Union, cast
+from typing import TYPE_CHECKING, Any, Literal, TypedDict, TypeVar, Union, cast
 
 import numpy as np
 import numpy.typing as npt
@@ -237,56 +237,49 @@ def mean_red(path: str) -> float:
     return float(min(max(red.mean() / 255.0, 0.0), 1.0))
 
 
-def _wall_reds(report: dict[str, Any]) -> tuple[dict[str, float], list[str]]:
-    """The mean reds of the report's wall textures (the first candidate file that exists), and
-    a warning for each file that exists but cannot be decoded."""
-    reds: dict[str, float] = {}
-    problems: list[str] = []
-    for texture in report.get("wall_textures") or []:
-        for candidate in [c for c in texture["candidates"] if os.path.isfile(c)][:1]:
-            if candidate in reds:
-                continue
-            try:
-                reds[candidate] = mean_red(candidate)
-            except OSError as error:
-                problems.append(
-                    f"{texture['owner']}: wall texture {candidate}: expected a PNG or JPEG "
-                    f"image, cannot decode it ({error}); the wall reflects as white"
-                )
-    return reds, problems
+#: What a texture that cannot be read leaves, by the kind of its owner.
+_UNREAD = {"floor": "the floor is left bare", "wall": "the wall reflects as white"}
+
+_Value = TypeVar("_Value")
 
 
-def _floor_images(
-    report: dict[str, Any], resolver: Resolver | None
-) -> tuple[dict[str, npt.NDArray[np.float64]], list[str]]:
-    """The images of the report's floor textures (the first candidate file that exists, else
-    the URL's file through ``resolver``), and a warning for each file that exists but cannot
-    be decoded."""
-    images: dict[str, npt.NDArray[np.float64]] = {}
+def _texture_values(
+    textures: list[dict[str, Any]],
+    kind: str,
+    read: Callable[[str], _Value],
+    resolver: Resolver | None,
+) -> tuple[dict[str, _Value], list[str]]:
+    """What ``read`` makes of each texture's image (a floor's grey levels, a wall's mean red),
+    by the candidate the core looks it up by: the first candidate file that exists, else the
+    URL's file through ``resolver`` or the download cache (:func:`_downloaded`); and a warning
+    for each image that cannot be had or decoded. ``kind``: ``floor`` or ``wall``."""
+    values: dict[str, _Value] = {}
     problems: list[str] = []
-    for texture in report["floor_textures"]:
+    for texture in textures:
         files = [(c, c) for c in texture["candidates"] if os.path.isfile(c)]
         if not files and texture["candidates"]:
-            files = _downloaded(texture, problems, resolver)
+            files = _downloaded(texture, kind, problems, resolver)
         for key, candidate in files[:1]:
+            if key in values:
+                continue
             try:
-                images[key] = grey_levels(candidate)
+                values[key] = read(candidate)
             except OSError as error:
                 problems.append(
-                    f"{texture['owner']}: floor texture {candidate}: expected a PNG or JPEG "
-                    f"image, cannot decode it ({error})"
+                    f"{texture['owner']}: {kind} texture {candidate}: expected a PNG or JPEG "
+                    f"image, cannot decode it ({error}); {_UNREAD[kind]}"
                 )
-    return images, problems
+    return values, problems
 
 
 def _downloaded(
-    texture: dict[str, Any], problems: list[str], resolver: Resolver | None
+    texture: dict[str, Any], kind: str, problems: list[str], resolver: Resolver | None
 ) -> list[tuple[str, str]]:
-    """A floor texture given by an http(s) URL, through the PROTO engine's download cache, or
-    by a ``webots://`` URL, found as the PROTO engine finds a ``webots://`` PROTO (the Webots
-    installation, the Webots tree the world lies in, else Webots' repository at the world's
-    version through that cache): [(the candidate the core looks the image up by, the file)],
-    or [] with a warning naming the URL."""
+    """A ``kind`` (floor or wall) texture given by an http(s) URL, through the PROTO engine's
+    download cache, or by a ``webots://`` URL, found as the PROTO engine finds a ``webots://``
+    PROTO (the Webots installation, the Webots tree the world lies in, else Webots' repository
+    at the world's version through that cache): [(the candidate the core looks the image up by,
+    the file)], or [] with a warning naming the URL."""
     from mazesim.webots.proto import ProtoUnavailableError, fetch_url
 
     for url in map(str, texture["urls"]):
@@ -297,7 +290,7 @@ def _downloaded(
             found = resolver.webots_texture(url) if webots and resolver else fetch_url(url)
             return [(texture["candidates"][0], str(found))]
         except ProtoUnavailableError as error:
-            problems.append(f"{texture['owner']}: floor texture: {error}; the floor is left bare")
+            problems.append(f"{texture['owner']}: {kind} texture: {error}; {_UNREAD[kind]}")
             return []
     return []
 
@@ -329,11 +322,11 @@ def _with_floor(
     ],
     resolver: Resolver | None = None,
 ) -> tuple[World, ImportReport]:
-    """Imports again with the floor textures' images (``webots://`` and http(s) ones through
-    the world's ``resolver``) and the wall textures' mean reds when any was found."""
+    """Imports again with the floor textures' images and the wall textures' mean reds
+    (``webots://`` and http(s) ones through the world's ``resolver``) when any was found."""
     world, report = imported
-    images, problems = _floor_images(report, resolver)
-    reds, unread = _wall_reds(report)
+    images, problems = _texture_values(report["floor_textures"], "floor", grey_levels, resolver)
+    reds, unread = _texture_values(report.get("wall_textures") or [], "wall", mean_red, resolver)
     if images or reds:
         world, report = again(images, reds)
     problems += unread
