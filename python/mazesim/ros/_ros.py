@@ -39,7 +39,7 @@ MASTER_TIMEOUT_S = 10.0
 DEBIAN_PACKAGES = (
     "python3-rosmaster python3-roslaunch python3-rospy python3-rostopic python3-std-msgs "
     "python3-rosgraph-msgs python3-rosbag rosout python3-sensor-msgs python3-nav-msgs "
-    "python3-geometry-msgs python3-tf2-msgs"
+    "python3-geometry-msgs python3-tf2-msgs python3-std-srvs"
 )
 
 
@@ -54,6 +54,7 @@ ROS_MODULES = {
     "nav_msgs": "python3-nav-msgs",
     "geometry_msgs": "python3-geometry-msgs",
     "tf2_msgs": "python3-tf2-msgs",
+    "std_srvs": "python3-std-srvs",
 }
 
 
@@ -105,7 +106,8 @@ def require_ros() -> Any:
     Returns:
         A namespace with ``rospy``, ``rosgraph``, ``Float64MultiArray``, ``MultiArrayDimension``,
         ``String``, ``Clock`` and the standard messages ``Range``, ``LaserScan``, ``Odometry``,
-        ``Twist``, ``TransformStamped`` and ``TFMessage``.
+        ``Twist``, ``TransformStamped`` and ``TFMessage``, and the service ``Empty`` (``std_srvs``)
+        with ``EmptyResponse``.
 
     Raises:
         MissingDependencyError: ROS 1's Python packages cannot be imported.
@@ -118,6 +120,7 @@ def require_ros() -> Any:
         from rosgraph_msgs.msg import Clock
         from sensor_msgs.msg import LaserScan, Range
         from std_msgs.msg import Float64MultiArray, MultiArrayDimension, String
+        from std_srvs.srv import Empty, EmptyResponse
         from tf2_msgs.msg import TFMessage
     except ImportError as error:
         raise MissingDependencyError(
@@ -137,6 +140,8 @@ def require_ros() -> Any:
         Twist=Twist,
         TransformStamped=TransformStamped,
         TFMessage=TFMessage,
+        Empty=Empty,
+        EmptyResponse=EmptyResponse,
     )
 
 

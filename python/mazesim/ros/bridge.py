@@ -38,6 +38,10 @@ is already set, and sets ``control_step_ms`` in its namespace (next to its topic
 perform-learning node dead-reckons its sub-tasks with it. It logs the step at which the robot first
 reaches the goal, and says in its last log line whether it did.
 
+It offers Gazebo's reset services, ``/gazebo/reset_simulation`` and ``/gazebo/reset_world``
+(``std_srvs/Empty``; :mod:`mazesim.ros.resets`, shared with the ROS 2 bridge): the state after
+the reset goes out before the call is answered.
+
 A bad command (not two finite numbers, an unknown action code) is logged and keeps the wheel
 speeds of the last command accepted (:class:`~mazesim.ros.topics.HeldCommand`, the rule of both
 bridges): in lockstep it still takes its step, so a controller answering each state with one
@@ -46,6 +50,7 @@ command gets the next state.
 
 from __future__ import annotations
 
+import functools
 import math
 import threading
 import time
@@ -67,6 +72,7 @@ from mazesim.ros.lockstep import (
     UnansweredState,
     stamp_nanoseconds,
 )
+from mazesim.ros.resets import RESET_SIMULATION, RESETS, EpisodeResets
 from mazesim.ros.standard import StandardPublishers
 
 __all__ = [
@@ -85,6 +91,8 @@ MODES = ("lockstep", "realtime")
 IDLE_WARNING_S = 5.0
 #: How many control steps a real-time bridge may fall behind before it stops catching up.
 MAX_LAG_STEPS = 5
+#: Where the reset services are, as Gazebo's ROS 1 node names them (``/gazebo/reset_world``).
+GAZEBO_NAMESPACE = "/gazebo"
 
 
 @dataclass
@@ -233,6 +241,17 @@ class Bridge:
             rospy.Subscriber(topics.ACTION_TOPIC, ros.String, self.on_action, tcp_nodelay=True),
             rospy.Subscriber(standard.CMD_VEL_TOPIC, ros.Twist, self.on_cmd_vel, tcp_nodelay=True),
         ]
+        #: ``/gazebo/reset_simulation`` and ``/gazebo/reset_world`` (``std_srvs/Empty``), as
+        #: Gazebo's node offers them (:mod:`mazesim.ros.resets`).
+        self.resets = EpisodeResets(simulator)
+        self.reset_services = [
+            rospy.Service(
+                f"{GAZEBO_NAMESPACE}/{kind}",
+                ros.Empty,
+                functools.partial(self.on_reset, kind),
+            )
+            for kind in RESETS
+        ]
 
     def _publisher(self, topic: str, message_class: Any) -> Any:
         # Synchronous in lockstep: every subscriber (a recorder too) gets every step before the
@@ -342,6 +361,29 @@ class Bridge:
             return True
         duration = self.settings.duration
         return duration > 0.0 and simulator.time >= duration - 1e-9
+
+    def on_reset(self, kind: str, request: Any) -> Any:
+        """Answers a call of a reset service: puts the simulator back
+        (:class:`~mazesim.ros.resets.EpisodeResets`), the wheels at rest, and publishes the state
+        after the reset (in lockstep the state the next command answers) before it answers."""
+        with self._lock:
+            self.resets.apply(kind)
+            if kind == RESET_SIMULATION:
+                self.idle_steps = 0
+            self.wheel_speeds = self.held.latest = (0.0, 0.0)
+            self.standard.previous = None
+            self.standard.previous_time = self.simulator.time
+            self.ros.rospy.loginfo(
+                "%s/%s: %s (step %d, %.3f s simulated); publishing the state after it",
+                GAZEBO_NAMESPACE,
+                kind,
+                RESETS[kind],
+                self.simulator.steps,
+                self.simulator.time,
+            )
+            self.publish_state()
+            self.unanswered.went_out(time.monotonic())
+        return self.ros.EmptyResponse()
 
     def on_motor(self, message: Any) -> None:
         """Handles a ``motor`` message: ``[left, right]`` in rad/s."""

@@ -17,6 +17,10 @@ seconds (a node that let a state go unanswered). Free-running: the bridge
 steps on its own at ``speed`` (see :mod:`mazesim.ros2.clock`), with the last commanded wheel
 speeds. Topics and QoS: :mod:`mazesim.ros2.state`; the page ``docs/ros2.md``.
 
+The services ``/reset_simulation`` and ``/reset_world`` (``std_srvs/srv/Empty``, as Gazebo's
+``gazebo_ros_init`` offers them; :mod:`mazesim.ros.resets` and :mod:`mazesim.ros2.services`)
+put the simulation back; the state after the reset goes out before the call is answered.
+
 A world of several robots publishes each robot's topics in its own namespace and reads each
 robot's commands there (:mod:`mazesim.ros2.robots`), with one ``/clock``. In lockstep the world
 steps once every robot whose command topics have a writer has sent its command for the step; a
@@ -42,6 +46,7 @@ from mazesim.actions import wheel_speeds
 from mazesim.errors import InvalidActionError, InvalidArgumentError
 from mazesim.ros import standard, topics
 from mazesim.ros.lockstep import IDLE_CLOCK_AFTER_S, RESEND_S, TimerHold, UnansweredState
+from mazesim.ros.resets import RESET_SIMULATION, RESETS, EpisodeResets
 from mazesim.ros2 import cdr, network
 from mazesim.ros2.bag import BagRecorder
 from mazesim.ros2.clock import SIM_CONTROL_TOPIC, FreeRunning, stamp_nanoseconds
@@ -317,6 +322,10 @@ class Ros2Bridge:
         self.control: Reader | None = None
         if settings.mode == "free":
             self.control = self.node.reader(SIM_CONTROL_TOPIC, STRING, COMMAND)
+        #: ``/reset_simulation`` and ``/reset_world`` (``std_srvs/srv/Empty``, as Gazebo's
+        #: ``gazebo_ros_init`` offers them; :mod:`mazesim.ros.resets`).
+        self.resets = EpisodeResets(simulator)
+        self.reset_servers = [(self.node.service_server("/" + kind), kind) for kind in RESETS]
         self.node.announce()
         published = [writer.topic for writer in self.node.writers]
         self.unpublished = UnpublishedTopics(
@@ -352,6 +361,8 @@ class Ros2Bridge:
         mask = SampleState.Any | ViewState.Any | InstanceState.Any
         for reader in self.node.readers:
             waitset.attach(ReadCondition(reader.dds, mask))
+        for server in self.node.services:
+            waitset.attach(ReadCondition(server.requests, mask))
         return waitset
 
     @staticmethod
@@ -467,6 +478,29 @@ class Ros2Bridge:
         while self.hold.holds(self.stamp()) and not self.stop.is_set():
             self.step_robots()
 
+    def _serve_resets(self) -> None:
+        """Answers the calls of ``/reset_simulation`` and ``/reset_world``: puts the simulator
+        back (:class:`~mazesim.ros.resets.EpisodeResets`), every robot's wheels at rest and no
+        command waiting, publishes the state after the reset (in lockstep the state the next
+        command answers) and then answers the call."""
+        for server, kind in self.reset_servers:
+            for header in server.take():
+                self.resets.apply(kind)
+                from_the_start = kind == RESET_SIMULATION
+                if from_the_start:
+                    self.idle_steps = 0
+                for robot in self.robots:
+                    robot.pending.clear()
+                    robot.wheel_speeds = robot.held.latest = (0.0, 0.0)
+                    robot.state.restart(from_the_start)
+                self._say(
+                    f"{server.service}: {RESETS[kind]} (step {self.simulator.steps}, "
+                    f"{self.simulator.time:.3f} s simulated); publishing the state after it"
+                )
+                self.publish_state(0.0)
+                self.unanswered.went_out(time.monotonic())
+                server.reply(header)
+
     def wait_for_driver(self) -> None:
         """Lockstep: waits until a command writer or a reader of a state topic has matched (a
         node that waits for one state before it creates its command writer, as
@@ -496,6 +530,7 @@ class Ros2Bridge:
                 wait = min(0.1, max(self._idle_tick_at - time.monotonic(), 0.0))
                 self._waitset.wait(int(wait * 1e9))
                 self._step_pending()
+                self._serve_resets()
                 self._check_readers()
                 self._greet_newcomers()
                 self._resend_unanswered()
@@ -638,6 +673,7 @@ class Ros2Bridge:
             for robot in self.robots:
                 for speeds in robot.commands():
                     robot.wheel_speeds = speeds
+            self._serve_resets()
             self._check_readers()
             delay = pace.due(self.simulator.time, control_step_s)
             if delay is None:

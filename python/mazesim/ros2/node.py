@@ -14,7 +14,7 @@ import uuid
 from typing import Any
 
 from mazesim.errors import MazesimIOError
-from mazesim.ros2 import graph, messages, network
+from mazesim.ros2 import graph, messages, network, services
 from mazesim.ros2._deps import require_ros2
 from mazesim.ros2.qos import GRAPH, TopicQos, cyclone_qos
 from mazesim.ros2.ros_args import RosArguments
@@ -134,17 +134,19 @@ class Node:
         self._topics: dict[tuple[str, str], Any] = {}
         self.readers: list[Reader] = []
         self.writers: list[Writer] = []
+        #: The service servers of the node (:meth:`service_server`).
+        self.services: list[Any] = []
         self._graph_writer = self._dds_writer(
             graph.DISCOVERY_TOPIC, graph.DISCOVERY_TYPE, GRAPH, ros_topic=False
         )
 
-    def _topic(self, dds_name: str, msgtype: str) -> Any:
+    def _topic(self, dds_name: str, msgtype: str, idl: Any = None) -> Any:
         # One DDS topic per name and type: a name may carry two types (``cmd_vel``: Twist and
         # TwistStamped), and DDS matches each reader only with writers of its own type.
         key = (dds_name, msgtype)
         if key not in self._topics:
             self._topics[key] = self._topic_class(
-                self.participant, dds_name, messages.idl_type(self.distro, msgtype)
+                self.participant, dds_name, idl or messages.idl_type(self.distro, msgtype)
             )
         return self._topics[key]
 
@@ -185,6 +187,30 @@ class Node:
         self.readers.append(reader)
         return reader
 
+    def service_server(self, service: str, srvtype: str = services.EMPTY) -> services.ServiceServer:
+        """A server of the ROS 2 service ``service`` (``/reset_simulation``) of ``srvtype``, a
+        service without fields (:mod:`mazesim.ros2.services`), under the name its remappings
+        give it."""
+        from cyclonedds.pub import DataWriter
+        from cyclonedds.sub import DataReader
+
+        service = self.resolve(service)
+        request, response = services.idl_types(srvtype)
+        qos = cyclone_qos(services.SERVICE_QOS)
+        requests = DataReader(
+            self.participant,
+            self._topic(services.request_topic(service), srvtype + "_Request", request),
+            qos=qos,
+        )
+        replies = DataWriter(
+            self.participant,
+            self._topic(services.reply_topic(service), srvtype + "_Response", response),
+            qos=qos,
+        )
+        server = services.ServiceServer(service, requests, replies)
+        self.services.append(server)
+        return server
+
     def announce(self) -> None:
         """Publishes the node and its endpoints on ``ros_discovery_info``."""
         sample = graph.participant_entities_info(
@@ -194,8 +220,10 @@ class Node:
                 (
                     self.namespace,
                     self.name,
-                    [reader.dds.guid for reader in self.readers],
-                    [writer.dds.guid for writer in self.writers],
+                    [reader.dds.guid for reader in self.readers]
+                    + [server.requests.guid for server in self.services],
+                    [writer.dds.guid for writer in self.writers]
+                    + [server.replies.guid for server in self.services],
                 )
             ],
         )
@@ -211,6 +239,7 @@ class Node:
         self._topics.clear()
         self.readers.clear()
         self.writers.clear()
+        self.services.clear()
         self._graph_writer = None
         self._domain = None
         time.sleep(0)

@@ -123,19 +123,11 @@ class StateTopics:
         imu_seed: int | None = None,
     ) -> None:
         self.simulator = simulator
-        #: ``/imu``'s draws and the simulated time of the step they are for.
-        self._imu_draws: tuple[float, list[float]] = (-1.0, [])
-        #: ``/imu``'s noise stream (None: noise-free).
-        self.imu_noise = (
-            None
-            if imu_seed is None
-            else np.random.default_rng(
-                np.random.SeedSequence(
-                    imu_seed, spawn_key=(zlib.crc32((namespace + IMU_TOPIC).encode("utf-8")),)
-                )
-            )
-        )
         self.namespace = namespace
+        self._imu_seed = imu_seed
+        self.imu_noise: np.random.Generator | None = None
+        self._imu_draws: tuple[float, list[float]] = (-1.0, [])
+        self._start_imu_noise()
         self.clock = clock
         self.frame_prefix = frame_prefix
         #: Where the transforms go: the robot's own ``tf``, or with a frame prefix the one ``/tf``.
@@ -178,6 +170,29 @@ class StateTopics:
         self.topics.append(Topic(f"{ns}/{topics.POSE_TOPIC}", FLOAT64_ARRAY, SENSOR))
         if clock:
             self.topics.append(Topic(CLOCK_TOPIC, CLOCK_TYPE, CLOCK))
+
+    def _start_imu_noise(self) -> None:
+        """Starts ``/imu``'s noise stream (None: noise-free) from its seed, no draws made."""
+        #: ``/imu``'s draws and the simulated time of the step they are for.
+        self._imu_draws = (-1.0, [])
+        seed = self._imu_seed
+        key = (zlib.crc32((self.namespace + IMU_TOPIC).encode("utf-8")),)
+        self.imu_noise = (
+            None
+            if seed is None
+            else np.random.default_rng(np.random.SeedSequence(seed, spawn_key=key))
+        )
+
+    def restart(self, from_the_start: bool) -> None:
+        """Forgets the steps before a reset of the simulator (:mod:`mazesim.ros.resets`): the
+        next messages' twist and rates are those of a robot at rest, and with
+        ``from_the_start`` (``reset_simulation``) ``/imu``'s noise stream starts again, so
+        the messages are those of a bridge just started."""
+        self.before = self.simulator.pose
+        self.encoders_before = self.simulator.encoders
+        self.world_velocity = (0.0, 0.0)
+        if from_the_start:
+            self._start_imu_noise()
 
     def static_topic(self) -> Topic:
         """``/tf_static`` (in the robot's namespace unless its frames have a prefix)."""

@@ -122,12 +122,14 @@ def other_type(
 def why_no_service(service: str, node: str) -> str | None:
     """Why a node calling the ROS 2 service ``service`` (``/mazesim_bridge/set_parameters``) gets
     no answer when it is a service of the bridge's node ``node`` (its full name), which offers
-    none; ``None`` for another node's service."""
+    none (its only services are the resets, ``/reset_simulation`` and ``/reset_world``);
+    ``None`` for another node's service."""
     if not service.startswith(node.rstrip("/") + "/"):
         return None
     return (
-        f"a node calls the service {service}, which this bridge does not offer: it has no ROS "
-        "services, and no parameters (ros2 param waits for them, then gives up): its settings "
+        f"a node calls the service {service}, which this bridge does not offer: its only "
+        "services are /reset_simulation and /reset_world (std_srvs/srv/Empty), and it has no "
+        "parameters (ros2 param waits for them, then gives up): its settings "
         "are its command-line options (--world, --seed, --mode...), and use_sim_time it needs "
         "no telling, being the clock; restart it to change them"
     )
