@@ -212,7 +212,12 @@ class Node:
         return server
 
     def announce(self) -> None:
-        """Publishes the node and its endpoints on ``ros_discovery_info``."""
+        """Publishes the node and its endpoints on ``ros_discovery_info``. Its services'
+        endpoints are among them where the distribution sends no type hashes (Humble): a
+        service's endpoints carry the service type's hash from Jazzy on, which this node does not
+        compute; there they are left out (``ros2 service list`` and a client's
+        ``wait_for_service`` find a service through DDS discovery, not through this topic)."""
+        services_listed = [] if self.distro in graph.TYPE_HASH_DISTROS else self.services
         sample = graph.participant_entities_info(
             self.distro,
             self.participant.guid,
@@ -221,9 +226,9 @@ class Node:
                     self.namespace,
                     self.name,
                     [reader.dds.guid for reader in self.readers]
-                    + [server.requests.guid for server in self.services],
+                    + [server.requests.guid for server in services_listed],
                     [writer.dds.guid for writer in self.writers]
-                    + [server.replies.guid for server in self.services],
+                    + [server.replies.guid for server in services_listed],
                 )
             ],
         )
