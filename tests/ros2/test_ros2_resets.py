@@ -8,16 +8,13 @@ from __future__ import annotations
 
 import sys
 
+from reset_runs import STEPS, client_run
 from ros2_support import MAZESIM, needs_namespace, needs_ros2, run_in_namespace
-
-STEPS = 12
 
 # The client: its service types written out here as ROS 2 names them on the wire (not taken
 # from mazesim); mazesim's Node only for /pose and /motor.
-CLIENT = f"""
+CLIENT = """
 import os, struct, time
-import numpy as np
-import mazesim
 from cyclonedds._clayer import ddspy_take, ddspy_write
 from cyclonedds.core import InstanceState, SampleState, ViewState
 from cyclonedds.idl import make_idl_struct
@@ -25,7 +22,6 @@ import cyclonedds.idl.types as idl
 from cyclonedds.pub import DataWriter
 from cyclonedds.sub import DataReader
 from cyclonedds.topic import Topic
-from mazesim.ros import topics
 from mazesim.ros2 import cdr
 from mazesim.ros2.node import Node
 from mazesim.ros2.qos import COMMAND, SENSOR, TopicQos, cyclone_qos
@@ -33,16 +29,16 @@ from mazesim.ros2.qos import COMMAND, SENSOR, TopicQos, cyclone_qos
 node = Node('reset_caller')
 poses = node.reader('/pose', 'std_msgs/msg/Float64MultiArray', TopicQos(True, False, 100))
 motor = node.writer('/motor', 'std_msgs/msg/Float64MultiArray', COMMAND)
-field = {{'structure_needs_at_least_one_member': idl.uint8}}
+field = {'structure_needs_at_least_one_member': idl.uint8}
 Request = make_idl_struct('Empty_Request_', 'std_srvs::srv::dds_::Empty_Request_', field)
 Response = make_idl_struct('Empty_Response_', 'std_srvs::srv::dds_::Empty_Response_', field)
 qos = cyclone_qos(TopicQos(True, False, 10))
 mask = SampleState.Any | ViewState.Any | InstanceState.Any
-clients = {{}}
+clients = {}
 for name in ('reset_simulation', 'reset_world'):
     part = node.participant
-    writer = DataWriter(part, Topic(part, f'rq/{{name}}Request', Request), qos=qos)
-    reader = DataReader(part, Topic(part, f'rr/{{name}}Reply', Response), qos=qos)
+    writer = DataWriter(part, Topic(part, f'rq/{name}Request', Request), qos=qos)
+    reader = DataReader(part, Topic(part, f'rr/{name}Reply', Response), qos=qos)
     clients[name] = (writer, reader)
 ceiling = time.monotonic() + 300
 seen = []
@@ -79,36 +75,14 @@ def call(name, sequence):
         assert time.monotonic() < ceiling, 'no reply from ' + name
         time.sleep(0.001)
 
-rng = np.random.default_rng(5)
-speeds = rng.uniform(-6.0, 6.28, ({STEPS}, 2)).tolist()
+def send(left, right):
+    motor.publish(cdr.encode_float64_multi_array([], [left, right]))
 
-def drive(first_step):
-    out = []
-    for index, (left, right) in enumerate(speeds):
-        motor.publish(cdr.encode_float64_multi_array([], [left, right]))
-        out.append(pose_at(first_step + index + 1))
-    return out
-
-start = pose_at(0)
-first = drive(0)
-sim = mazesim.Simulator(mazesim.load_world('seed-maze'), robot='e-puck', seed=0)
-expected = []
-for left, right in speeds:
-    sim.step(left, right)
-    expected.append(topics.pose_values(sim))
-assert first == expected, (first, expected)
-assert first[-1][:2] != start[:2]
-call('reset_simulation', 1)
-assert pose_at(0) == start
-again = drive(0)
-assert again == first, (again, first)
-print('reset_simulation: the run again, bit for bit')
-call('reset_world', 2)
-after = pose_at({STEPS})
-assert after[:3] == start[:3], (after, start)
-moved = drive({STEPS})
-assert moved[-1][3] > after[3] and moved[-1][:2] != after[:2]
-print('reset_world: at the start, the clock going on')
+sequence = 0
+def reset(name):
+    global sequence
+    sequence += 1
+    call(name, sequence)
 """
 
 
@@ -116,7 +90,7 @@ print('reset_world: at the start, the clock going on')
 @needs_namespace
 def test_a_client_resets_the_lockstep_run_and_the_world() -> None:
     bridge = [*MAZESIM, "ros2", "bridge", "--stop-after", str(2 * STEPS)]
-    result = run_in_namespace([bridge], [sys.executable, "-c", CLIENT])
+    result = run_in_namespace([bridge], [sys.executable, "-c", CLIENT + client_run()])
     assert result.returncode == 0, result.stderr
     assert "reset_simulation: the run again, bit for bit" in result.stdout
     assert "reset_world: at the start, the clock going on" in result.stdout

@@ -362,7 +362,7 @@ class Ros2Bridge:
         for reader in self.node.readers:
             waitset.attach(ReadCondition(reader.dds, mask))
         for server in self.node.services:
-            waitset.attach(ReadCondition(server.requests, mask))
+            waitset.attach(ReadCondition(server.requests.dds, mask))
         return waitset
 
     @staticmethod

@@ -207,7 +207,11 @@ class Node:
             self._topic(services.reply_topic(service), srvtype + "_Response", response),
             qos=qos,
         )
-        server = services.ServiceServer(service, requests, replies)
+        server = services.ServiceServer(
+            service,
+            Reader(service, srvtype, requests, services.SERVICE_QOS),
+            Writer(service, srvtype, replies, services.SERVICE_QOS),
+        )
         self.services.append(server)
         return server
 
@@ -226,9 +230,9 @@ class Node:
                     self.namespace,
                     self.name,
                     [reader.dds.guid for reader in self.readers]
-                    + [server.requests.guid for server in services_listed],
+                    + [server.requests.dds.guid for server in services_listed],
                     [writer.dds.guid for writer in self.writers]
-                    + [server.replies.guid for server in services_listed],
+                    + [server.replies.dds.guid for server in services_listed],
                 )
             ],
         )

@@ -64,33 +64,24 @@ class ServiceServer:
 
     Args:
         service: The service's ROS name (``/reset_simulation``).
-        requests: The DDS reader of its request topic (bytes as received).
-        replies: The DDS writer of its reply topic.
+        requests: The reader of its request topic.
+        replies: The writer of its reply topic.
     """
 
     def __init__(self, service: str, requests: Any, replies: Any) -> None:
-        from cyclonedds._clayer import ddspy_take, ddspy_write
-        from cyclonedds.core import InstanceState, SampleState, ViewState
-
         self.service = service
         self.requests = requests
         self.replies = replies
-        self._take = ddspy_take
-        self._write = ddspy_write
-        self._mask = SampleState.Any | ViewState.Any | InstanceState.Any
 
     def take(self) -> list[bytes]:
         """The headers of the requests received since the last call, oldest first; a request
         too short to carry one is dropped."""
-        result = self._take(self.requests._ref, self._mask, 64)
-        if isinstance(result, int):
-            return []
         return [
             bytes(data[4 : 4 + HEADER_BYTES])
-            for data, info in result
-            if info.valid_data and len(data) >= 4 + HEADER_BYTES
+            for data in self.requests.take()
+            if len(data) >= 4 + HEADER_BYTES
         ]
 
     def reply(self, header: bytes) -> None:
         """Answers the request of ``header`` with the empty response."""
-        self._write(self.replies._ref, cdr.CDR_LE + header + b"\x00\x00\x00\x00")
+        self.replies.publish(cdr.CDR_LE + header + b"\x00\x00\x00\x00")
