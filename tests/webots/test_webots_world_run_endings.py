@@ -112,3 +112,42 @@ def test_ctrl_c_stops_every_controller_quietly_and_exits_130(tmp_path: Path) -> 
     rows = (out / "trajectory.csv").read_text().splitlines()
     assert len(rows) == 1 + 2 * (summary["steps"] + 1)
     assert "(seed 0, 2 robots)" in stdout
+
+
+#: A supervisor that quits the simulation once it has taken ten steps.
+QUITTING = """
+from controller import Supervisor
+
+supervisor = Supervisor()
+steps = 0
+while supervisor.step(32) != -1:
+    steps += 1
+    if steps == 10:
+        supervisor.simulationQuit(0)
+"""
+#: A controller that says how many steps it took, and at what time, once ``step`` returns -1.
+COUNTING = """
+from controller import Robot
+
+robot = Robot()
+steps = 0
+while robot.step(32) != -1:
+    steps += 1
+print(f"counted {steps} steps, at {robot.getTime():.3f} s")
+"""
+
+
+def test_another_robot_s_quit_ends_a_controller_s_step_without_one_more_step(
+    tmp_path: Path, capfd: pytest.CaptureFixture[str]
+) -> None:
+    text = WORLD.replace('controller "FIRST"', 'controller "first" supervisor TRUE')
+    text = text.replace("SECOND", "second")
+    world = project_of(tmp_path, "two.wbt", text, {"first": QUITTING, "second": COUNTING})
+    status = main(["webots", "run", str(world), "--seconds", "5", "--out", str(tmp_path / "out")])
+    stdout = capfd.readouterr().out
+    assert status == 0, stdout
+    summary = json.loads((tmp_path / "out" / "summary.json").read_text())
+    # The world takes the supervisor's ten steps; the other controller's eleventh is answered
+    # with the end, as in Webots, not with a step in which no time passes.
+    assert summary["steps"] == 10
+    assert "counted 10 steps, at 0.320 s" in stdout, stdout

@@ -86,6 +86,14 @@ def _deprecated_getter(getter: str) -> Any:
     return get
 
 
+def _answer_the_end(simulation: Any) -> int:
+    """Notes that the run's end was answered to ``Robot.step`` (-1), and when: the controller
+    then has :data:`GRACE_SECONDS` of wall-clock time to end."""
+    simulation.ended = True
+    simulation.ended_at = time.monotonic()
+    return -1
+
+
 def _equipment_property(device: str) -> Any:
     """The robot's ``keyboard``, ``mouse`` or ``joystick`` as a property that a controller's
     ``Robot`` subclass may set to its own object, as in Webots."""
@@ -290,8 +298,9 @@ class Robot(NotSimulated):
             duration: Milliseconds to simulate; by default one basic time step.
 
         Returns:
-            0, or -1 when the run's time is up, a supervisor asked to quit or paused the
-            simulation (it does not advance then; paused, ``step(0)`` returns 0 at once).
+            0, or -1 when the run's time is up, a supervisor (this robot's or, in a world run,
+            another's) asked to quit, removed this robot or paused the simulation (it does
+            not advance then; paused, ``step(0)`` returns 0 at once).
 
         Raises:
             InvalidArgumentError: ``duration`` is negative, beyond Webots' C int or not a
@@ -325,10 +334,13 @@ class Robot(NotSimulated):
                 simulation.quit_status = 0
         for _ in range(max(1, math.ceil(duration / basic - 1e-9))):
             if simulation.time_is_up or simulation.quit_status is not None:
-                simulation.ended = True
-                simulation.ended_at = time.monotonic()
-                return -1
+                return _answer_the_end(simulation)
             self._equipment.advance()
+            if simulation.world_over:
+                # The world's run ended instead of taking this step (another robot's supervisor
+                # quit it, or removed this robot): no time passed, and Webots answers the step
+                # with the end, not with one step more.
+                return _answer_the_end(simulation)
         return 0
 
     def stepBegin(self, duration: float | None = None) -> int:
