@@ -11,7 +11,7 @@ import pytest
 
 pytest.importorskip("gymnasium")
 
-from mazesim.envs.baselines import evaluate  # noqa: E402
+from mazesim.envs.baselines import FrontierExplorer, evaluate  # noqa: E402
 from mazesim.errors import InvalidArgumentError  # noqa: E402
 
 TASK = "mazesim/MazeFixed-v1"
@@ -24,6 +24,13 @@ class Forward:
 
     def __init__(self, observation_names: Any, maze_size: Any) -> None:
         self.names = observation_names
+
+    def act(self, observation: Any) -> Any:
+        return FORWARD
+
+
+class Stateless:
+    """A class made without arguments, once per episode."""
 
     def act(self, observation: Any) -> Any:
         return FORWARD
@@ -50,6 +57,9 @@ def test_a_function_an_object_a_model_and_a_factory_drive_the_same_episodes() ->
     assert evaluate(TASK, forward, **SHORT) == expected
     assert evaluate(TASK, lambda observation: FORWARD, **SHORT) == expected
     assert evaluate(TASK, Forward(None, None), **SHORT) == expected
+    assert evaluate(TASK, Stateless, **SHORT) == expected
+    explorer = evaluate("mazesim/UnseenMazeExplore-v0", FrontierExplorer, **SHORT)
+    assert explorer.episodes == 2  # FrontierExplorer(names, maze_size=None)
     assert evaluate(TASK, model, **SHORT) == expected
     assert model.deterministic and all(model.deterministic)
     assert evaluate(TASK, model.predict, **SHORT) == expected

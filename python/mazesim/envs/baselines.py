@@ -379,11 +379,12 @@ def _episode_agents(
             f"evaluate: expected as the agent {_AGENT_FORMS}; found {_short(agent)}"
         )
     needed = _required_positional(agent)
-    if needed == 1 and not isinstance(agent, type):
+    if isinstance(agent, type):  # a class is made once per episode
+        if needed == 0:
+            return [agent() for _ in range(episodes)]
+    elif needed == 1:
         return [_FunctionAgent(agent)] * episodes
-    if needed == 0 and isinstance(agent, type):
-        return [agent() for _ in range(episodes)]
-    if needed not in (None, 2):
+    elif needed not in (None, 2):
         raise InvalidArgumentError(
             f"evaluate: expected as the agent {_AGENT_FORMS}; found {_short(agent)}, which needs "
             f"{needed} arguments"
