@@ -51,8 +51,14 @@ PREFIX = "mazesim/"
 
 
 def task_ids() -> list[str]:
-    """Every registered mazesim id, in registration order."""
-    return [env_id for env_id in gymnasium.registry if env_id.startswith(PREFIX)]
+    """Every registered mazesim id, in registration order, but a task's former ids."""
+    from mazesim.envs.tasks import FORMER_IDS
+
+    return [
+        env_id
+        for env_id in gymnasium.registry
+        if env_id.startswith(PREFIX) and env_id not in FORMER_IDS
+    ]
 
 
 def action_pool(env: Any) -> list[Any]:
@@ -171,8 +177,6 @@ def main() -> int:
     args = parser.parse_args()
     if args.rounds < 1 or args.round < 1:
         parser.error("--rounds and --round must be at least 1")
-    if not sys.warnoptions:
-        warnings.filterwarnings("ignore", category=DeprecationWarning)  # UnseenMaze-v1 is old
     rows: dict[str, Any] = {}
     for env_id in task_ids():
         task, reference = paired(env_id, args.rounds, args.round)

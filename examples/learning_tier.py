@@ -8,8 +8,8 @@ checkout). Three commands::
     python examples/learning_tier.py baselines --out runs/tier-baselines
     python examples/learning_tier.py table runs/tier-* --picture curves.png
 
-The task is ``mazesim/UnseenMaze-v1`` (the robot's readings, the map it has explored round its
-cell, the goal's direction; 1000 steps of 128 ms) on mazes of ``--maze-size`` cells (7 x 7 by
+The task is ``mazesim/UnseenMazeExplore-v0`` (the robot's readings, the map it has explored round
+its cell, the goal's direction; 1000 steps of 128 ms) on mazes of ``--maze-size`` cells (7 x 7 by
 default, where the hand rules no longer reach every goal within the step limit). ``train`` trains
 one agent for ``--steps`` env-steps on 128 environments seeded ``seed``, ``seed + 1``, ...:
 
@@ -55,7 +55,7 @@ from mazesim.envs.baselines import FrontierExplorer, WallFollower, evaluate  # n
 from mazesim.envs.curriculum import MazeSizeCurriculum  # noqa: E402
 from mazesim.integrations.sb3 import make_vec_env  # noqa: E402
 
-TASK = "mazesim/UnseenMaze-v1"
+TASK = "mazesim/UnseenMazeExplore-v0"
 AGENTS = ("ppo", "recurrent", "curriculum")
 #: The held-out mazes' environments are seeded from here on; the validation curve's from
 #: ``VALIDATION_SEED``; training uses seed, seed + 1, ...
@@ -63,7 +63,7 @@ HELD_OUT_SEED = 10**6
 VALIDATION_SEED = 3 * 10**6
 #: The fast mode's time limit of the test episodes (None: the task's 1000 steps).
 FAST_LIMIT = 100
-#: PPO's settings (``examples/ppo_sb3.py``'s for ``UnseenMaze-v1``), shared by every agent.
+#: PPO's settings (``examples/ppo_sb3.py``'s for ``UnseenMazeExplore-v0``), shared by every agent.
 SETTINGS: dict[str, Any] = {
     "envs": 128,
     "n_steps": 128,

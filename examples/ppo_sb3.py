@@ -18,11 +18,12 @@ for the task, such as the reward weights; repeat it for several) in training and
 episodes alike, and ``--video run.mp4`` (or ``.gif``) records the trained policy's first held-out
 episode (needs ``mazesim[video]``).
 
-Tiers 1 to 3 (``UnseenMaze-v1``) scale PPO's rewards by a running estimate of the returns' spread
-(SB3's ``VecNormalize`` with ``norm_obs=False``): the observations are already of order 1;
-``UnseenMaze-v2`` takes tier 4's settings (no reward scaling), with 3M env-steps. ``UnseenMaze-v1``
-is evaluated with sampled actions: its memoryless policy, driven deterministically, can loop for
-ever in a maze it cannot see; sampling gets it out, as it did in training.
+Tiers 1 to 3 (``UnseenMazeExplore-v0``) scale PPO's rewards by a running estimate of the returns'
+spread (SB3's ``VecNormalize`` with ``norm_obs=False``): the observations are already of order 1;
+``UnseenMaze-v2`` takes tier 4's settings (no reward scaling), with 3M env-steps.
+``UnseenMazeExplore-v0`` is evaluated with sampled actions: its memoryless policy, driven
+deterministically, can loop for ever in a maze it cannot see; sampling gets it out, as it did in
+training.
 """
 
 from __future__ import annotations
@@ -53,7 +54,7 @@ SETTINGS: dict[str, dict[str, Any]] = {
     "mazesim/EPuckMaze-v0": {"envs": 64, "steps": 2_000_000, "n_steps": 128, "batch": 2048},
     "mazesim/MazeFixed-v1": {"envs": 64, "steps": 500_000, "n_steps": 128, "batch": 2048},
     "mazesim/MazeRandomGoal-v1": {"envs": 128, "steps": 2_000_000, "n_steps": 128, "batch": 4096},
-    "mazesim/UnseenMaze-v1": {
+    "mazesim/UnseenMazeExplore-v0": {
         "envs": 128,
         "steps": 3_000_000,
         "n_steps": 128,

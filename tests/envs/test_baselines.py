@@ -13,7 +13,7 @@ import mazesim  # noqa: F401  (registers the tasks)
 from mazesim.envs.baselines import CellAgent, FrontierExplorer, WallFollower, evaluate
 from mazesim.errors import InvalidArgumentError
 
-TASK = "mazesim/UnseenMaze-v1"
+TASK = "mazesim/UnseenMazeExplore-v0"
 AGENTS = [WallFollower, FrontierExplorer]
 
 
@@ -105,7 +105,7 @@ def test_evaluate_counts_successes_and_lengths() -> None:
     ],
 )
 def test_an_observation_of_another_shape_or_not_finite_is_refused(change, found) -> None:  # type: ignore[no-untyped-def]
-    env = gymnasium.make("mazesim/UnseenMaze-v1")
+    env = gymnasium.make("mazesim/UnseenMazeExplore-v0")
     observation, _ = env.reset(seed=0)
     for agent_class in (WallFollower, FrontierExplorer):
         agent = agent_class(env.get_wrapper_attr("observation_names"))

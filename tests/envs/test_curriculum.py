@@ -12,7 +12,7 @@ from mazesim.envs.baselines import FrontierExplorer
 from mazesim.envs.curriculum import MazeSizeCurriculum, MazeSizeCurriculumWrapper
 from mazesim.errors import InvalidArgumentError
 
-TASK = "mazesim/UnseenMaze-v1"
+TASK = "mazesim/UnseenMazeExplore-v0"
 
 
 def maze_rows(envs: gymnasium.vector.VectorEnv) -> list[int]:

@@ -4,6 +4,7 @@ the goal-conditioned observations, and the native vector env equal to SyncVector
 from __future__ import annotations
 
 import math
+import warnings
 from typing import Any
 
 import numpy as np
@@ -37,14 +38,13 @@ def test_tiers_run_from_one_fixed_maze_to_unseen_mazes() -> None:
     first = gymnasium.make("mazesim/MazeFixed-v1").unwrapped
     starts = {(first.reset(seed=s)[1]["pose"].tobytes()) for s in range(3)}
     assert len(starts) == 1  # tier 1: one start
-    with pytest.warns(DeprecationWarning, match="upgrading to version `v2`"):
-        unseen = gymnasium.make("mazesim/UnseenMaze-v1").unwrapped  # kept, but not the newest
+    unseen = gymnasium.make("mazesim/UnseenMazeExplore-v0").unwrapped
     walls = set()
     for seed in range(3):
         unseen.reset(seed=seed)
         walls.add(unseen.world.wall_boxes().tobytes())
     assert len(walls) == 3  # tier 3: a new maze every episode
-    assert gymnasium.make("mazesim/UnseenMaze-v1").unwrapped.options.observation == "explore"
+    assert gymnasium.make("mazesim/UnseenMazeExplore-v0").unwrapped.options.observation == "explore"
     planned = gymnasium.make("mazesim/UnseenMaze-v2").unwrapped
     assert planned.options.observation == "plan" and planned.metadata["render_fps"] == 1000 / 32
     names = planned.observation_names
@@ -107,7 +107,11 @@ def test_the_drawn_goal_ends_the_episode_and_shapes_the_reward() -> None:
 
 
 def test_tiers_1_to_3_act_every_128_ms_and_tier_2_observes_the_pose() -> None:
-    for env_id in ("mazesim/MazeFixed-v1", "mazesim/MazeRandomGoal-v1", "mazesim/UnseenMaze-v1"):
+    for env_id in (
+        "mazesim/MazeFixed-v1",
+        "mazesim/MazeRandomGoal-v1",
+        "mazesim/UnseenMazeExplore-v0",
+    ):
         assert gymnasium.make(env_id).unwrapped.metadata["render_fps"] == 1000 / 128
     env = gymnasium.make("mazesim/MazeRandomGoal-v1").unwrapped
     observation, info = env.reset(seed=3)
@@ -199,3 +203,15 @@ def test_the_explored_map_counts_visits_round_the_robot(tmp_path: Any) -> None:
     # A new episode forgets the visits.
     value = dict(zip(names, env.reset(seed=1)[0].tolist()))
     assert value["visits_here"] == pytest.approx(1 / 3) and value["visits_ahead"] == 0.0
+
+
+def test_the_learning_tier_is_made_without_a_warning_and_its_former_id_still_works() -> None:
+    # Registered as UnseenMaze-v1, gymnasium called it out of date beside UnseenMaze-v2.
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        env = gymnasium.make("mazesim/UnseenMazeExplore-v0")
+    with pytest.warns(DeprecationWarning, match="out of date"):
+        former = gymnasium.make("mazesim/UnseenMaze-v1")
+    assert former.unwrapped.options == env.unwrapped.options
+    assert former.spec.max_episode_steps == env.spec.max_episode_steps == 1000
+    assert (former.reset(seed=3)[0] == env.reset(seed=3)[0]).all()

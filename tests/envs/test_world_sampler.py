@@ -14,7 +14,7 @@ from mazesim.envs.baselines import FrontierExplorer, evaluate
 from mazesim.envs.curriculum import MazeSizeCurriculum
 from mazesim.errors import InvalidArgumentError
 
-TASK = "mazesim/UnseenMaze-v1"
+TASK = "mazesim/UnseenMazeExplore-v0"
 
 
 def sizes_and_seeds(rng: np.random.Generator) -> mazesim.World:

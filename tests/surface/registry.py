@@ -134,7 +134,7 @@ INSTANCES: dict[str, str] = {
     # The curriculum wraps a native vector env of an unseen-maze task.
     "mazesim.envs.curriculum.MazeSizeCurriculumWrapper": (
         "(lambda c: c.MazeSizeCurriculumWrapper(__import__('gymnasium').make_vec("
-        "'mazesim/UnseenMaze-v1', num_envs=2), c.MazeSizeCurriculum(((3, 3), (4, 4)))))("
+        "'mazesim/UnseenMazeExplore-v0', num_envs=2), c.MazeSizeCurriculum(((3, 3), (4, 4)))))("
         "__import__('mazesim.envs.curriculum', fromlist=['x']))"
     ),
     # The hand-written baselines read a task's observation names.
@@ -142,7 +142,7 @@ INSTANCES: dict[str, str] = {
         f"mazesim.envs.baselines.{name}": (
             f"getattr(__import__('mazesim.envs.baselines', fromlist=['x']), {name!r})("
             "__import__('gymnasium').make("
-            "'mazesim/UnseenMaze-v1').unwrapped.observation_names)"
+            "'mazesim/UnseenMazeExplore-v0').unwrapped.observation_names)"
         )
         for name in ("CellAgent", "FrontierExplorer", "WallFollower")
     },

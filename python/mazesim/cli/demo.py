@@ -44,6 +44,33 @@ def speed_summary(simulated_seconds: float, wall_clock: float) -> dict[str, Any]
     }
 
 
+def goal_summary(world: Any, xs: Any, ys: Any, step_s: float) -> dict[str, Any]:
+    """The summary entries of whether a run's path (``xs``, ``ys``: the start, then a point every
+    ``step_s`` seconds) entered ``world``'s goal disc: ``goal_reached`` and ``goal_time_s``, the
+    simulated time it first did (both None in a world without a goal; the time None when it
+    never did)."""
+    import numpy as np
+
+    if world.goal is None:
+        return {"goal_reached": None, "goal_time_s": None}
+    goal_x, goal_y, radius = world.goal
+    inside = np.flatnonzero(
+        np.hypot(np.asarray(xs, dtype=float) - goal_x, np.asarray(ys, dtype=float) - goal_y)
+        <= radius
+    )
+    first = float(inside[0] * step_s) if inside.size else None
+    return {"goal_reached": first is not None, "goal_time_s": first}
+
+
+def goal_line(summary: dict[str, Any]) -> str:
+    """The summary's printed line about the goal ("" in a world without one)."""
+    if summary["goal_reached"] is None:
+        return ""
+    if not summary["goal_reached"]:
+        return "goal reached       no\n"
+    return f"goal reached       yes, at {summary['goal_time_s']:.2f} s\n"
+
+
 def register(commands: Any) -> None:
     """Adds ``demo`` to the ``mazesim`` command's subparsers."""
     demo = commands.add_parser(
@@ -169,10 +196,8 @@ def run_avoid_collision_demo(args: argparse.Namespace, out: TextIO) -> int:
             progress("simulating", step, steps)
     wall_clock = time.perf_counter() - started
 
-    goal_reached: bool | None = None
-    if world.goal is not None:
-        goal_x, goal_y, radius = world.goal
-        goal_reached = bool(np.any(np.hypot(xs - goal_x, ys - goal_y) <= radius))
+    goal = goal_summary(world, xs, ys, simulator.time / max(simulator.steps, 1))
+    goal_reached = goal["goal_reached"]
     summary: dict[str, Any] = {
         "world": world.name,
         "robot": robot.name,
@@ -182,7 +207,7 @@ def run_avoid_collision_demo(args: argparse.Namespace, out: TextIO) -> int:
         "steps": simulator.steps,
         "distance_m": simulator.distance_travelled,
         "collisions": simulator.collisions,
-        "goal_reached": goal_reached,
+        **goal,
         **speed_summary(simulator.time, wall_clock),
     }
     if robot_label != robot.name:  # the profile's own name, and the file it came from
@@ -209,8 +234,7 @@ def run_avoid_collision_demo(args: argparse.Namespace, out: TextIO) -> int:
         f"distance travelled {simulator.distance_travelled:.2f} m\n"
         f"collisions         {simulator.collisions}\n"
     )
-    if goal_reached is not None:
-        out.write(f"goal reached       {'yes' if goal_reached else 'no'}\n")
+    out.write(goal_line(summary))
     out.write(
         f"wall-clock time    {wall_clock:.3f} s ({speed} real time)\n"
         + written_lines(args, picture, [picture, summary_path, *views])

@@ -252,7 +252,7 @@ def run_webots(args: argparse.Namespace, out: TextIO) -> int:
     Returns:
         The run's exit status (see the command's epilog).
     """
-    from mazesim.cli.demo import speed_summary
+    from mazesim.cli.demo import goal_line, goal_summary, speed_summary
     from mazesim.cli.webots_world import RobotPaths, write_paths_table
     from mazesim.plotting import save_robot_paths_png, save_trajectory_png
     from mazesim.webots.importer import undownloaded_textures
@@ -337,6 +337,7 @@ def run_webots(args: argparse.Namespace, out: TextIO) -> int:
             steps.finish()
     name = os.path.basename(result.controller)
     wall_clock = result.wall_clock_seconds
+    step_s = result.simulated_seconds / result.steps if result.steps else 0.0
     summary: dict[str, Any] = {
         "world": world.name,
         "controller": result.controller,
@@ -354,6 +355,7 @@ def run_webots(args: argparse.Namespace, out: TextIO) -> int:
         "stopped_after_end": result.stopped,
         "stalled": result.stalled,
         "final_pose": list(result.final_pose),
+        **goal_summary(result.world, result.xs, result.ys, step_s),
         **speed_summary(result.simulated_seconds, wall_clock),
         "missing_features": list(prepared.missing),
     }
@@ -364,7 +366,6 @@ def run_webots(args: argparse.Namespace, out: TextIO) -> int:
     ran = f"{result.simulated_seconds:.0f} s, seed {args.seed}"
     title = f"{world.name}: {name}, {ran}"
     picture = os.path.join(out_dir, "trajectory.png")
-    step_s = result.simulated_seconds / result.steps if result.steps else 0.0
     table = os.path.join(out_dir, "trajectory.csv")
     if fleet.several:
         # A mazesim world of several robots: the controller drove robot 0, the others stood.
@@ -397,6 +398,7 @@ def run_webots(args: argparse.Namespace, out: TextIO) -> int:
         f"distance travelled {result.distance_m:.2f} m\n"
         f"collisions         {result.collisions}\n"
         f"longest stop       {result.longest_stop_s:.2f} s\n"
+        f"{goal_line(summary)}"
         f"wall-clock time    {wall_clock:.3f} s ({speed} real time)\n"
     )
     for robot in summary.get("robots", [])[1:]:

@@ -1,6 +1,6 @@
 """Hand-written baseline agents for the unseen-maze tasks: a wall follower and a frontier explorer.
 
-Both act on the observation of ``mazesim/UnseenMaze-v1`` (the ``"explore"`` observation), as
+Both act on the observation of ``mazesim/UnseenMazeExplore-v0`` (the ``"explore"`` observation), as
 ``agent.act(observation) -> action``, continuous wheel speeds in [-1, 1]. They read nothing else:
 the open sides of the robot's own cell (``open_ahead`` ... ``open_right``), the goal's direction
 and their previous action, from which they keep their own odometry (:class:`CellAgent`); or, made
@@ -43,6 +43,7 @@ __all__ = [
     "BaselineResult",
     "CellAgent",
     "EpisodeAgent",
+    "PredictingModel",
     "FrontierExplorer",
     "WallFollower",
     "evaluate",
@@ -78,13 +79,13 @@ class CellAgent:
     has observed (:meth:`choose`, the rule of a subclass).
 
     With the pose in the observation (``include_pose=True``) it reads its cell and heading there.
-    Without it (``UnseenMaze-v1`` as registered) it keeps its own odometry, as a robot would: its
-    heading turned since the start, from its previous actions (exact while it touches no wall);
+    Without it (``UnseenMazeExplore-v0`` as registered) it keeps its own odometry, as a robot would:
+    its heading turned since the start, from its previous actions (exact while it touches no wall);
     its position relative to the goal, from the goal's direction rotated by that heading (the goal
     is at a cell's centre, so the cells are those of the maze round it); and, first, the maze's
     axes: it spins slowly on the spot until the open sides it observes move round by one, which
-    happens when its heading crosses a diagonal of its cell (a start cell open on all four sides,
-    or on none, shows no such change: the agent then takes its start heading as an axis).
+    happens when its heading crosses a diagonal of its cell (a start cell open on all four sides, or
+    on none, shows no such change: the agent then takes its start heading as an axis).
 
     Args:
         observation_names: The env's ``observation_names`` (``env.unwrapped.observation_names``):
@@ -293,9 +294,113 @@ class EpisodeAgent(Protocol):
         """The action for ``observation``."""
 
 
+class PredictingModel(Protocol):
+    """A model with Stable-Baselines3's ``predict(observation, deterministic=...)``, which
+    returns the action and a recurrent state."""
+
+    def predict(self, observation: Any, *args: Any, **kwargs: Any) -> Any:
+        """The action for ``observation``, and the model's recurrent state."""
+
+
+class _FunctionAgent:
+    """A function ``observation -> action`` as an agent."""
+
+    def __init__(self, function: Callable[[Any], Any]) -> None:
+        self.function = function
+
+    def act(self, observation: npt.NDArray[np.float32]) -> Any:
+        """The function's action for ``observation``, refused if it is a pair such as
+        Stable-Baselines3's ``predict`` returns."""
+        action = self.function(observation)
+        if isinstance(action, tuple) and len(action) == 2:
+            raise InvalidArgumentError(
+                f"evaluate: expected the agent function to return an action, found a pair "
+                f"{_short(action)}, as Stable-Baselines3's predict returns (action, state): "
+                f"pass the model itself (evaluate(task, model)), which is driven with "
+                f"model.predict(observation, deterministic=True)[0]"
+            )
+        return action
+
+
+class _ModelAgent:
+    """A Stable-Baselines3 model as an agent, acting deterministically."""
+
+    def __init__(self, model: PredictingModel) -> None:
+        self.model = model
+
+    def act(self, observation: npt.NDArray[np.float32]) -> Any:
+        """The model's deterministic action for ``observation``."""
+        return self.model.predict(observation, deterministic=True)[0]
+
+
+_AGENT_FORMS = (
+    "a function observation -> action; an object with act(observation) -> action; a "
+    "Stable-Baselines3 model (its predict, deterministic); or a class or function called as "
+    "agent(observation_names, maze_size) that makes one such object per episode"
+)
+
+
+def _short(value: object) -> str:
+    text = repr(value)
+    return text if len(text) <= 80 else text[:77] + "..."
+
+
+def _required_positional(function: Callable[..., Any]) -> int | None:
+    """How many positional arguments ``function`` needs (None when unknown or any number)."""
+    import inspect
+
+    try:
+        parameters = inspect.signature(function).parameters.values()
+    except (TypeError, ValueError):
+        return None
+    if any(p.kind is p.VAR_POSITIONAL for p in parameters):
+        return None
+    positional = (inspect.Parameter.POSITIONAL_ONLY, inspect.Parameter.POSITIONAL_OR_KEYWORD)
+    return sum(1 for p in parameters if p.kind in positional and p.default is p.empty)
+
+
+def _episode_agents(
+    agent: object, names: Sequence[str], size: tuple[int, int], episodes: int
+) -> list[EpisodeAgent]:
+    """The agents driving ``episodes`` episodes, from any form :func:`evaluate` takes (see
+    there), or an :class:`~mazesim.errors.InvalidArgumentError` naming the forms."""
+    if not isinstance(agent, type):
+        if callable(getattr(agent, "act", None)):
+            return [agent] * episodes  # type: ignore[list-item]
+        if callable(getattr(agent, "predict", None)):
+            return [_ModelAgent(agent)] * episodes  # type: ignore[arg-type]
+        owner = getattr(agent, "__self__", None)
+        if getattr(agent, "__name__", "") == "predict" and callable(
+            getattr(owner, "predict", None)
+        ):
+            return [_ModelAgent(owner)] * episodes  # type: ignore[arg-type]
+    if not callable(agent):
+        raise InvalidArgumentError(
+            f"evaluate: expected as the agent {_AGENT_FORMS}; found {_short(agent)}"
+        )
+    needed = _required_positional(agent)
+    if isinstance(agent, type):  # a class is made once per episode
+        if needed == 0:
+            return [agent() for _ in range(episodes)]
+    elif needed == 1:
+        return [_FunctionAgent(agent)] * episodes
+    elif needed not in (None, 2):
+        raise InvalidArgumentError(
+            f"evaluate: expected as the agent {_AGENT_FORMS}; found {_short(agent)}, which needs "
+            f"{needed} arguments"
+        )
+    made = [agent(names, size) for _ in range(episodes)]
+    if not callable(getattr(made[0], "act", None)):
+        raise InvalidArgumentError(
+            f"evaluate: expected agent(observation_names, maze_size) to make an object with "
+            f"act(observation) -> action, found {_short(made[0])}"
+        )
+    return made
+
+
 def evaluate(
     task: str,
-    agent: Callable[[Sequence[str], tuple[int, int]], EpisodeAgent] | None,
+    agent: Callable[..., Any] | EpisodeAgent | PredictingModel | None,
     episodes: int = 100,
     seed: int = 10**6,
     include_pose: bool = False,
@@ -326,7 +431,7 @@ def evaluate(
     try:
         observations, _ = envs.reset(seed=seed)
         names = _observation_names(envs)
-        agents = [agent(names, size) for _ in range(episodes)] if agent is not None else []
+        agents = _episode_agents(agent, names, size, episodes) if agent is not None else []
         envs.action_space.seed(seed)
         steps = np.zeros(episodes, dtype=np.int64)
         success = np.zeros(episodes, dtype=bool)

@@ -16,7 +16,7 @@ that end at each step (``info["is_success"]``) and applies the stage::
     import mazesim
     from mazesim.envs.curriculum import MazeSizeCurriculum, MazeSizeCurriculumWrapper
 
-    envs = gymnasium.make_vec("mazesim/UnseenMaze-v1", num_envs=64)
+    envs = gymnasium.make_vec("mazesim/UnseenMazeExplore-v0", num_envs=64)
     envs = MazeSizeCurriculumWrapper(envs, MazeSizeCurriculum(((3, 3), (5, 5), (7, 7))))
 
 A training loop of its own (Stable-Baselines3's callbacks, for one) calls ``record`` with the

@@ -8,14 +8,15 @@ id                                     task
                                        goal-conditioned observation, 128 ms control step
 ``mazesim/MazeRandomGoal-v1``          tier 2: seed-maze, random start and goal cells that
                                        join; goal and pose observed, 128 ms control step
-``mazesim/UnseenMaze-v1``              tier 3: a new 5 x 5 maze every episode, random start
+``mazesim/UnseenMazeExplore-v0``       tier 3: a new 5 x 5 maze every episode, random start
                                        and goal; the goal and the map explored so far
-                                       (open sides, visits round the robot), 128 ms
-``mazesim/UnseenMaze-v2``              tier 3: as v1, plus the next waypoint of the
-                                       shortest path through the maze as the robot knows it
-                                       (visited cells' sides, the rest assumed open); 32 ms:
-                                       the generalising task whose observation a mapping
-                                       robot computes itself
+                                       (open sides, visits round the robot), 128 ms; the
+                                       learning tier (formerly ``mazesim/UnseenMaze-v1``)
+``mazesim/UnseenMaze-v2``              tier 3: as UnseenMazeExplore-v0, plus the next
+                                       waypoint of the shortest path through the maze as the
+                                       robot knows it (visited cells' sides, the rest assumed
+                                       open); 32 ms: the generalising task whose observation
+                                       a mapping robot computes itself
 ``mazesim/UnseenMazeGuided-v0``        tier 4: as tier 3, plus the next waypoint of the
                                        shortest path through the true maze (a map-given,
                                        privileged task)
@@ -29,7 +30,8 @@ id                                     task
 The observations are those of :mod:`mazesim.envs.navigation`; the reward is the one of every
 maze env (:mod:`mazesim.envs.reward`). Every option can still be changed at ``make``.
 
-Version 1 of tiers 1 to 3 (version 0 was never released) acts every 128 ms instead of every 32 ms,
+Version 1 of tiers 1 and 2 (version 0 was never released) and tier 3's
+``UnseenMazeExplore-v0`` act every 128 ms instead of every 32 ms,
 with time limits of the same order in seconds (500 or 1000 steps): with a 32 ms step an episode
 was 1,500 to 2,000 steps whose rewards were each a few thousandths, too long a horizon for a
 discount of 0.99, and PPO learned nothing in minutes. Tier 2 also observes the pose (on one known
@@ -38,7 +40,7 @@ maze, where the robot is tells the way) and draws start and goal only among cell
 episode (``observation="explore"``): with the goal's direction alone a memoryless policy drives in
 circles in a maze it cannot see, with its visits it can prefer the corridors it has not tried.
 
-Version 2 of tier 3 (``observation="plan"``, v1 kept as it was) adds the next waypoint of a plan
+Version 2 of tier 3 (``observation="plan"``) adds the next waypoint of a plan
 the robot could make itself: the shortest path through the maze as it knows it, planned again
 on entering each new cell. The policy then only has to drive from cell to cell, as in tier 4,
 which a feed-forward policy learns in about a million env-steps at 32 ms; the exploring is the
@@ -101,7 +103,7 @@ _SEED_MAZE_GOALS = {
     "start_goal": "random",
     "control_step_ms": LONG_STEP_MS,
 }
-#: A new 5 x 5 maze every episode, the explored map observed (``UnseenMaze-v1``).
+#: A new 5 x 5 maze every episode, the explored map observed (``UnseenMazeExplore-v0``).
 _UNSEEN_MAZE_GOALS = {
     "world": "random",
     "observation": "explore",
@@ -133,7 +135,7 @@ TASKS: tuple[Task, ...] = (
         },
     ),
     Task(
-        "mazesim/UnseenMaze-v1",
+        "mazesim/UnseenMazeExplore-v0",
         3,
         "a new 5 x 5 maze each episode, random start and goal, the explored map observed",
         1000,
@@ -211,15 +213,25 @@ GOAL_TASKS: tuple[Task, ...] = tuple(
 )
 
 
+#: Ids a task was registered under before, and the task's id now. ``mazesim/UnseenMaze-v1`` is
+#: the learning tier under its first id: gymnasium took it for an older version of
+#: ``UnseenMaze-v2`` (another task, whose observation holds a plan) and warned at every ``make``
+#: that it was out of date; the former id still makes the same env, with that warning.
+FORMER_IDS: dict[str, str] = {"mazesim/UnseenMaze-v1": "mazesim/UnseenMazeExplore-v0"}
+
+
 def register_tasks() -> None:
-    """Registers every task (single and vector entry points) that is not registered yet."""
+    """Registers every task (single and vector entry points) that is not registered yet, and
+    each task's former ids (:data:`FORMER_IDS`)."""
     from gymnasium.envs.registration import register, registry
 
-    for task in TASKS + GOAL_TASKS:
-        if task.env_id in registry:
+    now = {former: next(t for t in TASKS if t.env_id == new) for former, new in FORMER_IDS.items()}
+    named = [(task.env_id, task) for task in TASKS + GOAL_TASKS] + list(now.items())
+    for env_id, task in named:
+        if env_id in registry:
             continue
         register(
-            id=task.env_id,
+            id=env_id,
             entry_point=task.entry_point,
             vector_entry_point=task.vector_entry_point,
             max_episode_steps=task.max_episode_steps,
