@@ -116,3 +116,68 @@ def test_a_value_quoted_at_length_is_shown_shortened() -> None:
     io_error = str(MazesimIOError("x" * 10**5))
     assert io_error.endswith("x") and len(io_error) <= MOST_MESSAGE + 40
     assert str(mazesim.MazesimError("short")) == "short"
+
+
+def _typed_at(prompt: str, module: str) -> BaseException:
+    """The exception of a callback defined by code that has no file of its own (typed at the
+    prompt, given to ``python -c``), whose globals name ``module``."""
+    namespace: dict[str, object] = {"__name__": module}
+    code = "def callback():\n    raise ZeroDivisionError('the caller s')\n"
+    exec(compile(code, prompt, "exec"), namespace)  # noqa: S102 - the code under test's origin
+    return _raised(namespace["callback"])
+
+
+@pytest.mark.parametrize("prompt", ["<stdin>", "<string>", "<console>"])
+def test_a_callback_typed_at_the_prompt_is_the_callers_not_an_internal_error(prompt: str) -> None:
+    """A world sampler typed at Python's prompt (or given to ``python -c``) that raised was
+    reported as mazesim's "internal error, please report": code of no file counted as a
+    library's. Code the package generates in its own modules stays the package's."""
+    own = _typed_at(prompt, "__console__")
+    assert in_the_tree("f", own, False) is own
+    generated = _typed_at("<string>", "mazesim.errors")
+    assert isinstance(in_the_tree("f", generated, False), InternalError)
+
+
+def test_an_env_s_world_sampler_typed_at_the_prompt_raises_its_own_exception() -> None:
+    gymnasium = pytest.importorskip("gymnasium")
+    import mazesim.envs  # noqa: F401 - registers the envs
+
+    namespace: dict[str, object] = {"__name__": "__console__"}
+    code = "def sampler(rng):\n    raise ZeroDivisionError('the caller s')\n"
+    exec(compile(code, "<stdin>", "exec"), namespace)  # noqa: S102 - the code under test's origin
+    with pytest.raises(ZeroDivisionError, match="the caller s") as caught:
+        gymnasium.make("mazesim/EPuckMaze-v0", world=namespace["sampler"])
+    assert not isinstance(caught.value, mazesim.MazesimError)
+
+
+def test_every_raise_of_the_package_quotes_a_repr_through_shown() -> None:
+    """A message of the package quotes a value's repr with ``_shown`` (about 200 characters),
+    never with ``{value!r}``, which quoted a text of a million characters whole, up to the
+    4,000 characters every message is cut to."""
+    import ast
+
+    package = Path(mazesim.__file__).parent
+    found = []
+    for file in sorted(package.rglob("*.py")):
+        for node in ast.walk(ast.parse(file.read_text(encoding="utf-8"))):
+            if isinstance(node, ast.Raise) and node.exc is not None:
+                found += [
+                    f"{file.relative_to(package)}:{sub.lineno}"
+                    for sub in ast.walk(node.exc)
+                    if isinstance(sub, ast.FormattedValue) and sub.conversion == ord("r")
+                ]
+    assert found == [], found
+
+
+def test_a_long_word_of_any_message_is_shortened_to_about_200_characters() -> None:
+    """The compiled core's messages quote a name or a path as it was given, and a deep .wbt
+    file's field path is one long word: each word past MOST_QUOTED characters is shortened."""
+    from mazesim.errors import MOST_QUOTED, UnknownNameError
+
+    with pytest.raises(UnknownNameError) as caught:
+        mazesim.World.builtin("w" * 10**5)
+    assert len(str(caught.value)) < 3 * MOST_QUOTED + 300, len(str(caught.value))
+    with pytest.raises(MazesimIOError) as missing:
+        mazesim.World.load("/tmp/" + "a" * 5000)
+    assert len(str(missing.value)) < 2 * MOST_QUOTED + 200, str(missing.value)
+    assert str(mazesim.MazesimError("short words " * 100)) == "short words " * 100

@@ -150,10 +150,12 @@ def refusal_calls(entry: EntryPoint) -> list[dict[str, Any]]:
 
 
 #: Most characters a call may print, and most its error's message may hold, whatever it was
-#: given: a value is quoted shortened (``mazesim.errors._shortened``), never whole, so a text of
-#: a million characters makes a message of a line, not a flood.
+#: given: a value is quoted shortened to about 200 characters (``mazesim.errors._shortened``:
+#: ``_shown`` for a repr, every word of a message past 200 characters), never whole, so a text
+#: of a million characters makes a message of a line or two, not a flood (nor the 4,000
+#: characters every message is cut to at the last).
 MOST_PRINTED = 20_000
-MOST_MESSAGE = 5_000
+MOST_MESSAGE = 1_500
 
 
 def long_text_calls(entry: EntryPoint) -> list[dict[str, Any]]:

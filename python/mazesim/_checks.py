@@ -59,6 +59,7 @@ from mazesim.errors import (
     WrongTypeError,
     _a_type,
     _closest_name,
+    _shown,
 )
 
 __all__ = [
@@ -536,14 +537,15 @@ class _Parameters:
                 names = [known for known in self.by_name if known != self.first]
                 meant = _closest_name(name, names)
                 raise InvalidArgumentError(
-                    f"{self.func.__qualname__}: expected no argument named {name!r}, found one; "
+                    f"{self.func.__qualname__}: expected no argument named {_shown(name)}, "
+                    "found one; "
                     f"its arguments: {', '.join(names) or 'none by name'}"
-                    + (f"; did you mean {meant!r}?" if meant else "")
+                    + (f"; did you mean {_shown(meant)}?" if meant else "")
                 )
         for index, name, keyword_only in self.required:
             if name not in kwargs and (keyword_only or index >= len(args)):
                 raise InvalidArgumentError(
-                    f"{self.func.__qualname__}: expected the argument {name!r}, found none"
+                    f"{self.func.__qualname__}: expected the argument {_shown(name)}, found none"
                 )
 
     def check_text(self, args: tuple[Any, ...], kwargs: dict[str, Any]) -> None:

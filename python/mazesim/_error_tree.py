@@ -64,9 +64,22 @@ def _raised_by_library(error: BaseException) -> bool:
         return True
     while trace.tb_next is not None:
         trace = trace.tb_next
-    file = trace.tb_frame.f_code.co_filename
+    frame = trace.tb_frame
+    file = frame.f_code.co_filename
+    if file.startswith("<") and not file.startswith("<frozen"):
+        # Code without a file of its own: the caller's typed at the prompt (``<stdin>``), given
+        # to ``python -c`` or exec'd (``<string>``), or code a module generated (a dataclass's
+        # methods), whose globals are its module's: the module's file says whose it is.
+        module = sys.modules.get(frame.f_globals.get("__name__", ""))
+        origin = getattr(module, "__file__", None)
+        return isinstance(origin, str) and _in_library(origin)
     if file.startswith("<") or not os.path.isabs(file):
-        return True  # frozen modules, generated code, compiled extensions (numpy's .pyx)
+        return True  # frozen modules, compiled extensions (numpy's .pyx)
+    return _in_library(file)
+
+
+def _in_library(file: str) -> bool:
+    """Whether ``file`` is mazesim's or an installed library's."""
     return os.path.realpath(file).startswith(_LIBRARY_FOLDERS)
 
 

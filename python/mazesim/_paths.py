@@ -22,6 +22,7 @@ from mazesim.errors import (
     MazesimIOError,
     UnknownNameError,
     _closest_name,
+    _shown,
 )
 from mazesim.errors import _path_of as fs_path
 
@@ -401,7 +402,8 @@ def refuse_overwriting_inputs(
             continue
         if os.path.isdir(out_path):
             raise InvalidArgumentError(
-                f"{out_label} {os.fspath(out_path)!r} is a folder; expected the path of a file"
+                f"{out_label} {_shown(os.fspath(out_path))} is a folder; expected the path of "
+                "a file"
             )
         clashes = [
             (label, path, "; mazesim does not write over its own input:")
@@ -416,8 +418,8 @@ def refuse_overwriting_inputs(
         if clashes:
             label, path, why = clashes[0]
             raise InvalidArgumentError(
-                f"{out_label} {os.fspath(out_path)!r} is the same file as {label} "
-                f"{os.fspath(path)!r}{why} choose another {out_label}"
+                f"{out_label} {_shown(os.fspath(out_path))} is the same file as {label} "
+                f"{_shown(os.fspath(path))}{why} choose another {out_label}"
             )
         written.append((out_label, out_path))
 
@@ -441,7 +443,7 @@ def output_path(text: str) -> str:
     """A path to write to, as a command-line argument type: not empty (an empty path would
     quietly mean the current folder) and without NUL characters."""
     if not text or "\0" in text:
-        raise argparse.ArgumentTypeError(f"expected a path to write to, found {text!r}")
+        raise argparse.ArgumentTypeError(f"expected a path to write to, found {_shown(text)}")
     return text
 
 
@@ -451,14 +453,15 @@ def output_file(text: str) -> str:
     output_path(text)
     if os.path.isdir(text):
         raise argparse.ArgumentTypeError(
-            f"expected the path of a file to write, found the folder {text!r}"
+            f"expected the path of a file to write, found the folder {_shown(text)}"
         )
     parent = os.path.dirname(os.path.abspath(text))
     while not os.path.exists(parent) and os.path.dirname(parent) != parent:
         parent = os.path.dirname(parent)
     if not os.path.isdir(parent):
         raise argparse.ArgumentTypeError(
-            f"expected a path to write to, found {text!r}, below {parent!r}, which is a file"
+            f"expected a path to write to, found {_shown(text)}, below {_shown(parent)}, which "
+            "is a file"
         )
     return text
 

@@ -20,7 +20,7 @@ from __future__ import annotations
 import numpy as np
 import numpy.typing as npt
 
-from mazesim.errors import InvalidArgumentError
+from mazesim.errors import InvalidArgumentError, _shown
 
 __all__ = ["STREAMS", "seed_sequence", "stream", "stream_seeds"]
 
@@ -66,17 +66,18 @@ def seed_sequence(seed: int, name: str, *index: int) -> np.random.SeedSequence:
     """
     if name not in STREAMS:
         raise InvalidArgumentError(
-            f"expected a random stream named one of {', '.join(STREAMS)}, found {name!r}"
+            f"expected a random stream named one of {', '.join(STREAMS)}, found {_shown(name)}"
         )
     tag, arity = STREAMS[name]
     if len(index) != arity:
         raise InvalidArgumentError(
-            f"expected {arity} index(es) for random stream {name!r}, found {len(index)}"
+            f"expected {arity} index(es) for random stream {_shown(name)}, found {len(index)}"
         )
     values = (int(seed), *(int(i) for i in index))
     if min(values) < 0:
         raise InvalidArgumentError(
-            f"expected a non-negative seed and indices for random stream {name!r}, found {values}"
+            f"expected a non-negative seed and indices for random stream {_shown(name)}, found "
+            f"{values}"
         )
     return np.random.SeedSequence(int(seed), spawn_key=(tag, *values[1:]))
 

@@ -44,7 +44,7 @@ from typing import NamedTuple
 import numpy as np
 import numpy.typing as npt
 
-from mazesim.errors import InvalidActionError
+from mazesim.errors import InvalidActionError, _shown
 
 __all__ = [
     "ACTIONS",
@@ -122,7 +122,7 @@ def action_index(code: str) -> int:
     key = code.strip().lower() if isinstance(code, str) else None
     if key not in ACTIONS:
         raise InvalidActionError(
-            f"expected an action code, one of {', '.join(ACTION_CODES)}; found {code!r}"
+            f"expected an action code, one of {', '.join(ACTION_CODES)}; found {_shown(code)}"
         )
     return ACTION_CODES.index(key)
 

@@ -29,7 +29,7 @@ from mazesim._core import RobotProfile, World
 from mazesim._seeding import seed_sequence
 from mazesim._seeding import stream as random_stream
 from mazesim.batch import CONTROL_STEP_MS, RobotBatch, RobotChoice, cruise_step_length
-from mazesim.errors import InvalidArgumentError
+from mazesim.errors import InvalidArgumentError, _shown
 from mazesim.maze import CellMaze, navigator_problems
 
 __all__ = [
@@ -134,7 +134,7 @@ class EpisodeBatch:
     ) -> None:
         if events not in EVENT_SOURCES:
             raise InvalidArgumentError(
-                f"expected events from one of {', '.join(EVENT_SOURCES)}, found {events!r}"
+                f"expected events from one of {', '.join(EVENT_SOURCES)}, found {_shown(events)}"
             )
         self.worlds = list(worlds)
         if not self.worlds:
@@ -142,7 +142,7 @@ class EpisodeBatch:
         goals = []
         for world in self.worlds:
             if world.goal is None:
-                raise InvalidArgumentError(f"world {world.name!r} has no goal to drive to")
+                raise InvalidArgumentError(f"world {_shown(world.name)} has no goal to drive to")
             goals.append(world.goal)
         self.goals = np.array(goals, dtype=np.float64)
         if world_of_env is None:

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import difflib
 import os
+import re
 
 __all__ = [
     "ClusterConnectionError",
@@ -52,6 +53,25 @@ def _shortened(text: str, most: int = MOST_QUOTED) -> str:
     return f"{text[:head]}[... {len(text) - head - tail} characters ...]{text[len(text) - tail :]}"
 
 
+#: A run of more than :data:`MOST_QUOTED` characters without a space: no word of the package's
+#: own, but a value quoted in it (a path, a name, a dotted field of a deep file).
+_LONG_WORD = re.compile(rf"\S{{{MOST_QUOTED + 1},}}")
+
+
+def _words_shortened(message: str) -> str:
+    """``message`` with each of its words longer than :data:`MOST_QUOTED` characters
+    :func:`_shortened`: a message of the compiled core, or one that quotes a value with ``str``,
+    quotes a path or a name of a million characters as a line."""
+    return _LONG_WORD.sub(lambda word: _shortened(word.group()), message)
+
+
+def _shown(value: object) -> str:
+    """``repr(value)`` as a message quotes it, :func:`_shortened`: every ``{value!r}`` of a
+    message the package raises is written ``{_shown(value)}`` (a test of the package's source
+    keeps it so), so that a value of a million characters shows as a line."""
+    return _shortened(repr(value))
+
+
 class MazesimError(Exception):
     """The root of every exception that mazesim raises on purpose.
 
@@ -60,7 +80,7 @@ class MazesimError(Exception):
     """
 
     def __str__(self) -> str:
-        return _shortened(super().__str__(), MOST_MESSAGE)
+        return _shortened(_words_shortened(super().__str__()), MOST_MESSAGE)
 
 
 class WorldFormatError(MazesimError, ValueError):
@@ -199,7 +219,7 @@ class MazesimIOError(MazesimError, OSError):
         """The message as given (shortened as every message is), whatever attributes are set
         after construction."""
         if len(self.args) == 1:
-            return _shortened(str(self.args[0]), MOST_MESSAGE)
+            return _shortened(_words_shortened(str(self.args[0])), MOST_MESSAGE)
         return super().__str__()
 
 

@@ -23,7 +23,7 @@ import numpy as np
 import numpy.typing as npt
 
 from mazesim._core import RobotProfile, Simulator, World
-from mazesim.errors import InvalidArgumentError
+from mazesim.errors import InvalidArgumentError, _shown
 
 __all__ = [
     "EAST",
@@ -279,7 +279,8 @@ class CellMaze:
         maze = world.cell_maze()
         if maze is None:
             raise InvalidArgumentError(
-                f"expected a world with a [grid] cell maze, found none in {world.name!r} (its "
+                f"expected a world with a [grid] cell maze, found none in {_shown(world.name)} "
+                "(its "
                 "walls are boxes, as every imported Webots world's are): draw the maze as a [grid] "
                 "map of +--+ and | in a .toml world file (docs/world-format.md), or generate one "
                 "with mazesim.generate_maze"

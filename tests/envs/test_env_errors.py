@@ -122,3 +122,21 @@ def test_a_world_past_the_env_cell_limit_is_refused_at_once(kind: str) -> None:
         env_class(world=world) if kind == "single" else env_class(num_envs=2, world=world)
     with pytest.raises(InvalidArgumentError, match="maze_size"):
         env_class(world="random", maze_size=(side, side))
+
+
+@pytest.mark.parametrize(
+    "layout",
+    [np.asfortranarray, lambda a: np.ascontiguousarray(a.T).T, lambda a: np.repeat(a, 2, 0)[::2]],
+)
+def test_the_vector_env_steps_actions_of_any_memory_layout_alike(layout: Any) -> None:
+    """Actions in Fortran order (or a transpose of a (2, N) policy output) kept their order
+    through the env's conversion and the batch refused them as "not C-contiguous"; a strided
+    slice was copied and worked. Every layout of the same values steps the same."""
+    wanted = np.array([[0.5, -0.25], [1.0, 0.75], [-1.0, 0.0]], np.float32)
+    results = []
+    for given in (wanted, layout(wanted)):
+        env = EPuckMazeVectorEnv(num_envs=3)
+        env.reset(seed=7)
+        observations, *_ = env.step(given)
+        results.append(observations)
+    assert np.array_equal(results[0], results[1])

@@ -101,3 +101,15 @@ def test_an_action_that_is_not_two_numbers_names_the_agent(action: Any) -> None:
     with pytest.raises(mazesim.InvalidActionError) as caught:
         env.step(actions)
     assert f"expected the action of {env.agents[1]} to be two wheel speeds" in str(caught.value)
+
+
+def test_the_batch_steps_actions_in_fortran_order_as_in_c_order() -> None:
+    """Fortran-ordered actions kept their order through the batch's clipping and were refused
+    by the core as "not C-contiguous"."""
+    results = []
+    for layout in (np.ascontiguousarray, np.asfortranarray):
+        batch = maze_goals_v0.batch_env(2, **OPTIONS)
+        batch.reset(seed=3)
+        actions = np.linspace(-1.0, 1.0, 2 * batch.num_robots * 2, dtype=np.float32)
+        results.append(batch.step(layout(actions.reshape(2, batch.num_robots, 2)))[0])
+    assert np.array_equal(results[0], results[1])

@@ -13,7 +13,7 @@ from collections.abc import Iterator, Mapping, Sequence
 from typing import TYPE_CHECKING, Union, cast
 
 from mazesim._core import default_codes, validate_codes
-from mazesim.errors import InvalidArgumentError
+from mazesim.errors import InvalidArgumentError, _shown
 
 if TYPE_CHECKING:
     from mazesim._core import World
@@ -58,7 +58,8 @@ class CodeBook:
             pairs = [(self._checked_id(key), str(code)) for key, code in codes.items()]
         elif isinstance(codes, str):
             raise InvalidArgumentError(
-                f"expected a sequence of codes or a mapping id -> code, found the string {codes!r}"
+                "expected a sequence of codes or a mapping id -> code, found the string "
+                f"{_shown(codes)}"
             )
         else:
             pairs = [(index + 1, str(code)) for index, code in enumerate(codes)]
@@ -76,7 +77,7 @@ class CodeBook:
     def _checked_id(value: object) -> int:
         if isinstance(value, bool) or not isinstance(value, int) or value < 1:
             raise InvalidArgumentError(
-                f"expected checkpoint ids that are positive integers, found {value!r}"
+                f"expected checkpoint ids that are positive integers, found {_shown(value)}"
             )
         return value
 
@@ -95,7 +96,7 @@ class CodeBook:
         checkpoints = world.checkpoints()
         if not checkpoints:
             raise InvalidArgumentError(
-                f"world {world.name!r} has no barcode checkpoints to make a code book of"
+                f"world {_shown(world.name)} has no barcode checkpoints to make a code book of"
             )
         return cls({int(cast(int, cp["id"])): str(cp["code"]) for cp in checkpoints})
 
@@ -119,7 +120,7 @@ class CodeBook:
             return self._codes[checkpoint]
         except KeyError:
             raise InvalidArgumentError(
-                f"expected one of the checkpoint ids {self.ids}, found {checkpoint!r}"
+                f"expected one of the checkpoint ids {self.ids}, found {_shown(checkpoint)}"
             ) from None
 
     def reading(self, checkpoint: int, direction: str) -> str:
@@ -135,7 +136,8 @@ class CodeBook:
         if direction == DEPARTURE:
             return code[::-1]
         raise InvalidArgumentError(
-            f"expected direction {ARRIVAL!r} or {DEPARTURE!r}, found {direction!r}"
+            f"expected direction {_shown(ARRIVAL)} or {_shown(DEPARTURE)}, found "
+            f"{_shown(direction)}"
         )
 
     def lookup(self, bits: str) -> tuple[int, str] | None:

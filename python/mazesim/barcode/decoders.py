@@ -35,7 +35,7 @@ import numpy as np
 import numpy.typing as npt
 
 from mazesim.barcode.codebook import ARRIVAL, CodeBook
-from mazesim.errors import InvalidArgumentError, WrongTypeError, _a_type
+from mazesim.errors import InvalidArgumentError, WrongTypeError, _a_type, _shown
 
 __all__ = [
     "BAR_LENGTH",
@@ -478,7 +478,7 @@ def make_decoder(name: str, book: CodeBook, **options: Any) -> Decoder:
     except KeyError:
         available = sorted(DECODERS)
         raise UnknownNameError(
-            f"no decoder named {name!r}; decoders: {', '.join(available)}",
+            f"no decoder named {_shown(name)}; decoders: {', '.join(available)}",
             available=available,
             name=name,
         ) from None

@@ -24,7 +24,7 @@ from collections.abc import Sequence
 import numpy as np
 import numpy.typing as npt
 
-from mazesim.errors import InvalidArgumentError, UnknownNameError
+from mazesim.errors import InvalidArgumentError, UnknownNameError, _shown
 
 __all__ = ["LINKS", "ROS_LINK_PERIODS", "UnsyncedLink", "check_link"]
 
@@ -42,7 +42,9 @@ def check_link(name: str) -> str:
     """
     if name not in LINKS:
         raise UnknownNameError(
-            f"no link named {name!r}; links: {', '.join(LINKS)}", available=list(LINKS), name=name
+            f"no link named {_shown(name)}; links: {', '.join(LINKS)}",
+            available=list(LINKS),
+            name=name,
         )
     return name
 

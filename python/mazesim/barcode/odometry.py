@@ -17,7 +17,7 @@ import numpy as np
 import numpy.typing as npt
 
 from mazesim._core import RobotProfile
-from mazesim.errors import InvalidArgumentError
+from mazesim.errors import InvalidArgumentError, _shown
 
 __all__ = ["ENCODER_RESOLUTION", "Odometry", "WheelEncoders", "barcode_sensor_index"]
 
@@ -37,7 +37,7 @@ def barcode_sensor_index(robot: RobotProfile) -> int:
     positions = np.asarray(robot.ground_sensor_positions(), dtype=np.float64).reshape(-1, 2)
     if len(positions) == 0:
         raise InvalidArgumentError(
-            f"robot {robot.name!r} has no ground sensor to read barcodes with"
+            f"robot {_shown(robot.name)} has no ground sensor to read barcodes with"
         )
     return int(np.argmin(np.abs(positions[:, 1])))
 

@@ -42,7 +42,7 @@ from mazesim.barcode.link import UnsyncedLink, check_link
 from mazesim.barcode.odometry import WheelEncoders, barcode_sensor_index
 from mazesim.barcode.reader import BatchBarcodeReader
 from mazesim.controllers import Explore
-from mazesim.errors import InvalidArgumentError, MazesimError, UnknownNameError
+from mazesim.errors import InvalidArgumentError, MazesimError, UnknownNameError, _shown
 
 __all__ = [
     "DEFAULT_ENVS",
@@ -348,7 +348,7 @@ def run_setting(
         if step >= max_steps:
             raise MazesimError(
                 f"only {len(truths)} of {readings} barcode crossings in {MAX_SECONDS:.0f} s "
-                f"of {envs} robots in {world.name!r} (threshold {threshold_v} V, "
+                f"of {envs} robots in {_shown(world.name)} (threshold {threshold_v} V, "
                 f"speed {speed} rad/s)"
             )
     return [_judge(name, truths, reads[name], threshold_v, speed, window) for name in decoders]
@@ -392,7 +392,7 @@ def run_study(
     if unknown:
         available = sorted(DECODERS)
         raise UnknownNameError(
-            f"no decoder named {unknown[0]!r}; decoders: {', '.join(available)}",
+            f"no decoder named {_shown(unknown[0])}; decoders: {', '.join(available)}",
             available=available,
             name=unknown[0],
         )

@@ -24,7 +24,7 @@ import numpy as np
 
 import mazesim
 from mazesim._settings import setting
-from mazesim.errors import InvalidArgumentError
+from mazesim.errors import InvalidArgumentError, _shown
 
 from .memory import engine_bytes, resident_bytes
 from .workloads import WORKLOADS, Workload, make_workload
@@ -106,7 +106,7 @@ class BenchSettings:
             if not isinstance(value, int) or isinstance(value, bool) or value < smallest:
                 raise InvalidArgumentError(
                     f"benchmark setting {name}: expected a whole number of at least {smallest}, "
-                    f"found {value!r}"
+                    f"found {_shown(value)}"
                 )
         if self.mazes == "distinct" and self.envs > MAX_DISTINCT_MAZES:
             raise InvalidArgumentError(
@@ -122,7 +122,7 @@ class BenchSettings:
         if self.workload not in WORKLOADS:
             raise InvalidArgumentError(
                 f"benchmark setting workload: expected one of {', '.join(WORKLOADS)}, "
-                f"found {self.workload!r}"
+                f"found {_shown(self.workload)}"
             )
         if self.steps_per_call > 1 and WORKLOADS[self.workload].builtin is None:
             multi = ", ".join(name for name, kind in WORKLOADS.items() if kind.builtin)
@@ -134,7 +134,7 @@ class BenchSettings:
         if self.mazes not in MAZE_KINDS:
             raise InvalidArgumentError(
                 f"benchmark setting mazes: expected one of {', '.join(MAZE_KINDS)}, "
-                f"found {self.mazes!r}"
+                f"found {_shown(self.mazes)}"
             )
 
 

@@ -20,7 +20,7 @@ from typing import Literal, Optional, Protocol
 import numpy as np
 import numpy.typing as npt
 
-from mazesim.errors import UnknownNameError
+from mazesim.errors import UnknownNameError, _shown
 
 __all__ = [
     "WORKLOADS",
@@ -210,7 +210,7 @@ def make_workload(name: str, envs: int, seed: int = 0) -> Workload:
         kind = WORKLOADS[name]
     except KeyError:
         raise UnknownNameError(
-            f"expected a workload among {', '.join(WORKLOADS)}, found {name!r}",
+            f"expected a workload among {', '.join(WORKLOADS)}, found {_shown(name)}",
             available=list(WORKLOADS),
             name=name,
         ) from None

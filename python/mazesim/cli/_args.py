@@ -16,7 +16,7 @@ from collections.abc import Callable, Mapping, Sequence
 from typing import Any
 
 from mazesim._paths import output_path
-from mazesim.errors import _closest_name
+from mazesim.errors import _closest_name, _shown
 
 __all__ = [
     "MAX_COUNT",
@@ -49,10 +49,10 @@ def _positive_float(text: str, what: str, largest: float) -> float:
     try:
         value = float(text)
     except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a {what}, found {text!r}") from None
+        raise argparse.ArgumentTypeError(f"expected a {what}, found {_shown(text)}") from None
     if not math.isfinite(value) or not 0.0 < value <= largest:
         raise argparse.ArgumentTypeError(
-            f"expected a positive {what} of at most {largest:g}, found {text!r}"
+            f"expected a positive {what} of at most {largest:g}, found {_shown(text)}"
         )
     return value
 
@@ -96,29 +96,29 @@ def whole_number(text: str, smallest: int, largest: int = MAX_COUNT) -> int:
         exact = decimal.Decimal("NaN")
     if not exact.is_finite():
         raise argparse.ArgumentTypeError(
-            f"expected a whole number such as 1000, 1_000, 500k or 2M, found {text!r}"
+            f"expected a whole number such as 1000, 1_000, 500k or 2M, found {_shown(text)}"
         )
     # A count has a few digits: '1e999999999' is refused, never written out or made an int.
     if exact.adjusted() > 24:
         raise argparse.ArgumentTypeError(
-            f"expected a whole number of at most {largest:,}, found {text!r}"
+            f"expected a whole number of at most {largest:,}, found {_shown(text)}"
         )
     if exact.adjusted() < -24:
-        raise argparse.ArgumentTypeError(f"expected a whole number, found {text!r}")
+        raise argparse.ArgumentTypeError(f"expected a whole number, found {_shown(text)}")
     exact *= scale
     understood = "" if str(exact) == cleaned else f" (understood as {exact.normalize():,f})"
     # Compared as decimals first: '1e999999999' never becomes a Python int.
     if exact < smallest:
         raise argparse.ArgumentTypeError(
-            f"expected a whole number of at least {smallest}, found {text!r}{understood}"
+            f"expected a whole number of at least {smallest}, found {_shown(text)}{understood}"
         )
     if exact > largest:
         raise argparse.ArgumentTypeError(
-            f"expected a whole number of at most {largest:,}, found {text!r}{understood}"
+            f"expected a whole number of at most {largest:,}, found {_shown(text)}{understood}"
         )
     if exact != exact.to_integral_value():
         raise argparse.ArgumentTypeError(
-            f"expected a whole number, found {text!r}{understood}: give a whole count"
+            f"expected a whole number, found {_shown(text)}{understood}: give a whole count"
         )
     return int(exact)
 
@@ -149,7 +149,7 @@ def name_list(text: str, names: Sequence[str], what: str) -> list[str]:
             if name not in names and (closest := _closest_name(name, list(names))) is not None
         ]
         raise argparse.ArgumentTypeError(
-            f"expected {what} among {', '.join(names)}, found {text!r}"
+            f"expected {what} among {', '.join(names)}, found {_shown(text)}"
             + (f"; did you mean {', '.join(meant)}?" if meant else "")
         )
     return list(dict.fromkeys(chosen))
@@ -160,9 +160,9 @@ def seed_argument(text: str) -> int:
     try:
         value = int(text)
     except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a whole number, found {text!r}") from None
+        raise argparse.ArgumentTypeError(f"expected a whole number, found {_shown(text)}") from None
     if value < 0 or value >= 2**64:
-        raise argparse.ArgumentTypeError(f"expected a seed in [0, 2^64), found {text!r}")
+        raise argparse.ArgumentTypeError(f"expected a seed in [0, 2^64), found {_shown(text)}")
     return value
 
 

@@ -11,7 +11,7 @@ import argparse
 import textwrap
 from typing import Any, NoReturn
 
-from mazesim.errors import MOST_MESSAGE, _closest_name, _shortened
+from mazesim.errors import MOST_MESSAGE, _closest_name, _shortened, _shown
 
 __all__ = ["CommandParser", "HelpFormatter", "examples"]
 
@@ -70,7 +70,7 @@ class CommandParser(argparse.ArgumentParser):
             if meant is None:
                 raise
             raise argparse.ArgumentError(
-                action, f"{error.message}; did you mean {meant!r}?"
+                action, f"{error.message}; did you mean {_shown(meant)}?"
             ) from None
 
 

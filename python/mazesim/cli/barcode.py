@@ -32,6 +32,7 @@ from mazesim.barcode.study import (
 from mazesim.cli._args import add_out_folder, add_seed_option, name_list, positive_int
 from mazesim.cli._help import examples
 from mazesim.cli.progress import add_progress_option, progress_display
+from mazesim.errors import _shown
 
 __all__ = ["run_barcode_study"]
 
@@ -48,10 +49,10 @@ def _number_list(
             value = float(part)
         except ValueError:
             raise argparse.ArgumentTypeError(
-                f"expected comma-separated {what}, found {part.strip()!r} in {text!r}"
+                f"expected comma-separated {what}, found {_shown(part.strip())} in {_shown(text)}"
             ) from None
         if not (math.isfinite(value) and accept(value)):
-            raise argparse.ArgumentTypeError(f"expected {expected}, found {part.strip()!r}")
+            raise argparse.ArgumentTypeError(f"expected {expected}, found {_shown(part.strip())}")
         values.append(value)
     return values
 

@@ -24,6 +24,7 @@ from mazesim.cli._args import (
 )
 from mazesim.cli._help import examples
 from mazesim.cli.progress import add_progress_option, progress_display
+from mazesim.errors import _shown
 
 __all__ = ["run_bench"]
 
@@ -39,10 +40,12 @@ def _counts(text: str, what: str, example: str) -> list[int]:
         counts = [int(part) for part in text.split(",") if part.strip()]
     except ValueError:
         raise argparse.ArgumentTypeError(
-            f"expected {what} like {example}, found {text!r}"
+            f"expected {what} like {example}, found {_shown(text)}"
         ) from None
     if not counts or min(counts) < 1 or max(counts) > MAX_COUNT:
-        raise argparse.ArgumentTypeError(f"expected {what} in [1, {MAX_COUNT}], found {text!r}")
+        raise argparse.ArgumentTypeError(
+            f"expected {what} in [1, {MAX_COUNT}], found {_shown(text)}"
+        )
     return counts
 
 

@@ -21,7 +21,7 @@ from mazesim._core import RobotProfile, Simulator
 from mazesim._paths import make_output_folder
 from mazesim.cli.demo import speed_summary
 from mazesim.cli.progress import progress_display
-from mazesim.errors import InvalidArgumentError
+from mazesim.errors import InvalidArgumentError, _shown
 
 __all__ = ["proximity_columns", "run_robots_demo"]
 
@@ -41,7 +41,7 @@ def proximity_columns(robot: RobotProfile, name: str | None = None) -> list[int]
         which = f"robot {name!r} ({robot.name})" if name else f"robot {robot.name!r}"
         raise InvalidArgumentError(
             f"the demo's avoid-collision controller needs the e-puck's 8 raw proximity sensors "
-            f"ps0-ps7; {which} has {', '.join(names)} in {robot.distance_sensor_unit!r}"
+            f"ps0-ps7; {which} has {', '.join(names)} in {_shown(robot.distance_sensor_unit)}"
         )
     return [names.index(sensor) for sensor in PROXIMITY]
 

@@ -23,7 +23,7 @@ from mazesim._paths import refuse_overwriting_inputs
 from mazesim.cli._args import add_setting_options, output_path, positive_int, seed_argument
 from mazesim.cli._help import examples
 from mazesim.cli.progress import add_progress_option, progress_display
-from mazesim.errors import UnknownNameError
+from mazesim.errors import UnknownNameError, _shown
 from mazesim.replay.navigator import Recording
 from mazesim.replay.views import (
     add_viewing_options,
@@ -86,7 +86,7 @@ def _world_or_random(name: str) -> World:
         if unknown.suggestion is not None:
             raise
         raise UnknownNameError(
-            f"{unknown}, or {RANDOM_WORLD!r} for unseen generated 5 x 5 mazes",
+            f"{unknown}, or {_shown(RANDOM_WORLD)} for unseen generated 5 x 5 mazes",
             available=[*(unknown.available or []), RANDOM_WORLD],
             name=name,
         ) from None

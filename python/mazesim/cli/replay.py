@@ -14,7 +14,7 @@ from typing import Any, TextIO
 from mazesim._paths import refuse_overwriting_inputs
 from mazesim.cli._help import examples
 from mazesim.cli.progress import add_progress_option, progress_display
-from mazesim.errors import InvalidArgumentError
+from mazesim.errors import InvalidArgumentError, _shown
 
 __all__ = ["run_replay"]
 
@@ -61,7 +61,7 @@ def run_replay(args: argparse.Namespace, out: TextIO) -> int:
     suffix = Path(args.out).suffix.lower()
     if suffix not in (".html", ".htm", ".mp4", ".gif"):
         raise InvalidArgumentError(
-            f"expected -o FILE.html, FILE.mp4 or FILE.gif, found {args.out!r}"
+            f"expected -o FILE.html, FILE.mp4 or FILE.gif, found {_shown(args.out)}"
         )
     refuse_overwriting_inputs([("-o", args.out)], [("the run", args.run_file)])
     run = load_run(args.run_file)

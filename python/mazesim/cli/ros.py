@@ -31,6 +31,7 @@ from mazesim.cli._ros_commands import (
     register_commands,
     wants_check,
 )
+from mazesim.errors import _shown
 from mazesim.replay.views import add_viewing_options
 from mazesim.ros._ros import check_ros_installed
 
@@ -61,7 +62,8 @@ def check_before_parsing(arguments: Sequence[str]) -> None:
 def _remapping(text: str) -> str:
     if ":=" not in text:
         raise argparse.ArgumentTypeError(
-            f"expected a ROS remapping NAME:=VALUE (e.g. sensors:=/robot1/sensors); found {text!r}"
+            "expected a ROS remapping NAME:=VALUE (e.g. sensors:=/robot1/sensors); found "
+            f"{_shown(text)}"
         )
     return text
 

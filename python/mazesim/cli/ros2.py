@@ -22,7 +22,7 @@ from mazesim.cli._ros_commands import (
     wants_check,
 )
 from mazesim.episodes import MAX_STEPS
-from mazesim.errors import InvalidArgumentError
+from mazesim.errors import InvalidArgumentError, _shown
 from mazesim.ros2._deps import require_ros2
 
 __all__ = ["check_before_parsing", "take_ros_arguments"]
@@ -90,7 +90,9 @@ def _non_negative(text: str, what: str) -> float:
     except ValueError:
         value = math.nan
     if not (math.isfinite(value) and 0.0 <= value <= LARGEST):
-        raise argparse.ArgumentTypeError(f"expected {what} from 0 to {LARGEST:g}; found {text!r}")
+        raise argparse.ArgumentTypeError(
+            f"expected {what} from 0 to {LARGEST:g}; found {_shown(text)}"
+        )
     return value
 
 
@@ -108,7 +110,9 @@ def _period_ms(text: str) -> float:
 
 def _policy(text: str) -> str:
     if not text or "\0" in text:
-        raise argparse.ArgumentTypeError(f"expected a folder of trained tables; found {text!r}")
+        raise argparse.ArgumentTypeError(
+            f"expected a folder of trained tables; found {_shown(text)}"
+        )
     return text
 
 
@@ -117,7 +121,7 @@ def _robot_namespace(text: str) -> str:
     from mazesim.ros2.robots import robot_namespaces
 
     if not text or "\0" in text:
-        raise argparse.ArgumentTypeError(f"expected a robot's name; found {text!r}")
+        raise argparse.ArgumentTypeError(f"expected a robot's name; found {_shown(text)}")
     return robot_namespaces([text.lstrip("/")])[0]
 
 
@@ -190,7 +194,7 @@ def _run_demo(args: argparse.Namespace) -> int:
     refuse_blocked_start(world, args.world)
     if len(world.robots) > 1:
         raise InvalidArgumentError(
-            f"mazesim ros2 demo drives one robot; world {world.name!r} holds "
+            f"mazesim ros2 demo drives one robot; world {_shown(world.name)} holds "
             f"{len(world.robots)}: run 'mazesim ros2 bridge --world {args.world}' and a node per "
             "robot, such as 'mazesim ros2 avoid-collision --robot NAME'"
         )

@@ -20,7 +20,7 @@ from mazesim._paths import (
 from mazesim.cli._args import add_out_folder, add_seed_option, positive_seconds
 from mazesim.cli._help import examples
 from mazesim.cli.progress import ProgressDisplay, add_progress_option, progress_display
-from mazesim.errors import InvalidArgumentError
+from mazesim.errors import InvalidArgumentError, _shown
 from mazesim.replay.views import (
     DeferredWatch,
     add_viewing_options,
@@ -240,7 +240,8 @@ def _load_world(
 def _refuse_robot_in_world_run(args: argparse.Namespace) -> None:
     if args.robot is not None:
         raise InvalidArgumentError(
-            f"--robot chooses the robot profile of one controller's run; found it ({args.robot!r}) "
+            "--robot chooses the robot profile of one controller's run; found it "
+            f"({_shown(args.robot)}) "
             "with a run of a whole world, whose robots are the world's: leave --robot out, or "
             "give each robot its profile in the world"
         )
@@ -265,8 +266,10 @@ def run_webots(args: argparse.Namespace, out: TextIO) -> int:
 
         if args.world != DEFAULT_WORLD:
             raise InvalidArgumentError(
-                f"--world chooses the world of a controller's run; found it ({args.world!r}) with "
-                f"the world file {args.controller!r} as the first argument, which is the world of "
+                "--world chooses the world of a controller's run; found it "
+                f"({_shown(args.world)}) with "
+                f"the world file {_shown(args.controller)} as the first argument, which is the "
+                "world of "
                 "this run: leave --world out, or give a controller file first"
             )
         _refuse_robot_in_world_run(args)
@@ -276,7 +279,8 @@ def run_webots(args: argparse.Namespace, out: TextIO) -> int:
         raise InvalidArgumentError(
             "--robot-controller NAME=FILE chooses a robot's controller in a world run "
             "(mazesim webots run WORLD.wbt ...); found it with the controller file "
-            f"{args.controller!r}: give the world as the first argument, or leave the option out"
+            f"{_shown(args.controller)}: give the world as the first argument, or leave the "
+            "option out"
         )
     file = controller_file(args.controller)
     from mazesim.cli.webots_world import run_world_command, whole_world_run

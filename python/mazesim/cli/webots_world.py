@@ -18,7 +18,7 @@ from typing import Any, TextIO
 
 from mazesim._atomic import atomic_file
 from mazesim._core import RobotProfile, World
-from mazesim.errors import InvalidArgumentError
+from mazesim.errors import InvalidArgumentError, _shown
 
 __all__ = [
     "RobotPaths",
@@ -272,7 +272,7 @@ def robot_controllers(pairs: list[str] | None) -> dict[str, str]:
         if not name or not file:
             raise InvalidArgumentError(
                 f"--robot-controller expects NAME=FILE (a robot's name, DEF name or controller "
-                f"field, then a controller file or folder), found {pair!r}"
+                f"field, then a controller file or folder), found {_shown(pair)}"
             )
         given[name] = file
     return given

@@ -10,7 +10,7 @@ from typing import Any, TextIO
 
 from mazesim._paths import output_file, shell_command
 from mazesim.cli._help import examples
-from mazesim.errors import InvalidArgumentError, MazesimIOError
+from mazesim.errors import InvalidArgumentError, MazesimIOError, _shown
 
 __all__ = ["export_world", "run_worlds"]
 
@@ -83,7 +83,7 @@ def export_world(name: str, file: str, *, force: bool = False) -> None:
         mazesim.load_world(name)  # not a built-in world: its error lists them
         available = ", ".join(sorted(mazesim.builtin_world_names()))
         raise MazesimIOError(
-            f"expected the name of a built-in world to export, found the file {name!r}; "
+            f"expected the name of a built-in world to export, found the file {_shown(name)}; "
             f"built-in worlds: {available} (a world file is edited where it is)"
         )
     try:

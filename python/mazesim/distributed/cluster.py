@@ -21,7 +21,12 @@ import tempfile
 from collections.abc import Iterator
 from types import ModuleType
 
-from mazesim.errors import ClusterConnectionError, InvalidArgumentError, MissingDependencyError
+from mazesim.errors import (
+    ClusterConnectionError,
+    InvalidArgumentError,
+    MissingDependencyError,
+    _shown,
+)
 
 __all__ = ["LOCAL", "connection_advice", "import_ray", "local_cpus", "ray_session"]
 
@@ -149,7 +154,7 @@ def ray_session(address: str | None = None, cpus: int | None = None) -> Iterator
         except ValueError as error:
             raise InvalidArgumentError(
                 f"expected a Ray address ('local', 'auto', HOST:6379 or ray://HOST:10001), "
-                f"found {address!r}: {error}"
+                f"found {_shown(address)}: {error}"
             ) from None
         except (ConnectionError, RuntimeError, ray.exceptions.RayError) as error:
             # A missing or wrong token raises Ray's AuthenticationError, a RayError.

@@ -48,6 +48,7 @@ from mazesim.errors import (
     InvalidArgumentError,
     UnknownNameError,
     WorldFormatError,
+    _shown,
 )
 
 __all__ = [
@@ -242,15 +243,15 @@ def _check_value(parameter: Parameter, value: Any, where: str) -> Any:
     else:
         right_kind = isinstance(value, kind)
     if not right_kind:
-        raise InvalidArgumentError(f"{where}: expected {parameter.expected}, found {value!r}")
+        raise InvalidArgumentError(f"{where}: expected {parameter.expected}, found {_shown(value)}")
     try:
         converted = kind(value)
     except OverflowError:  # a whole number too large for a float
         converted = math.inf
     if kind is float and not math.isfinite(converted):
-        raise InvalidArgumentError(f"{where}: expected {parameter.expected}, found {value!r}")
+        raise InvalidArgumentError(f"{where}: expected {parameter.expected}, found {_shown(value)}")
     if not parameter.accepts(converted):
-        raise InvalidArgumentError(f"{where}: expected {parameter.expected}, found {value!r}")
+        raise InvalidArgumentError(f"{where}: expected {parameter.expected}, found {_shown(value)}")
     return converted
 
 
@@ -265,7 +266,7 @@ def _unknown(source: str, table: str, key: str, available: list[str]) -> Unknown
 def _read_grid(source: str, grid: Any) -> dict[str, tuple[Any, ...]]:
     """Each parameter's values (a 1-tuple for a single value), checked, in expansion order."""
     if not isinstance(grid, dict):
-        raise InvalidArgumentError(f"{source}: expected a [grid] table, found {grid!r}")
+        raise InvalidArgumentError(f"{source}: expected a [grid] table, found {_shown(grid)}")
     for key in grid:
         if key not in _BY_NAME:
             raise _unknown(source, "grid.", key, [p.name for p in PARAMETERS])
@@ -278,7 +279,9 @@ def _read_grid(source: str, grid: Any) -> dict[str, tuple[Any, ...]]:
                 raise InvalidArgumentError(f"{where}: expected at least one value, found []")
             checked = [_check_value(parameter, v, f"{where}[{i}]") for i, v in enumerate(given)]
             if len(set(map(json.dumps, checked))) != len(checked):
-                raise InvalidArgumentError(f"{where}: expected distinct values, found {given!r}")
+                raise InvalidArgumentError(
+                    f"{where}: expected distinct values, found {_shown(given)}"
+                )
             values[parameter.name] = tuple(checked)
         elif given is None:
             values[parameter.name] = (None,)
@@ -316,7 +319,7 @@ def _world_text(source: str, name: str, base_dir: str) -> str | None:
         world = World.from_toml(text, source=path)
     if world.goal is None:
         raise InvalidArgumentError(
-            f"{source}: grid.world: expected a world with a goal, found none in {name!r}"
+            f"{source}: grid.world: expected a world with a goal, found none in {_shown(name)}"
         )
     return text
 
@@ -373,14 +376,14 @@ def parse_sweep_config(
             raise _unknown(source, "", key, ["sweep", "grid"])
     sweep = document.get("sweep", {})
     if not isinstance(sweep, dict):
-        raise InvalidArgumentError(f"{source}: expected a [sweep] table, found {sweep!r}")
+        raise InvalidArgumentError(f"{source}: expected a [sweep] table, found {_shown(sweep)}")
     for key in sweep:
         if key not in _SWEEP_KEYS:
             raise _unknown(source, "sweep.", key, list(_SWEEP_KEYS))
     stem = os.path.splitext(os.path.basename(source))[0] or "sweep"
     name = sweep.get("name", stem if source != "<string>" else "sweep")
     if not isinstance(name, str) or not name:
-        raise InvalidArgumentError(f"{source}: sweep.name: expected a text, found {name!r}")
+        raise InvalidArgumentError(f"{source}: sweep.name: expected a text, found {_shown(name)}")
     limits = {"cpus_per_task": (1, 1, 1024), "max_retries": (2, 0, 100)}
     numbers = {}
     for key, (default, low, high) in limits.items():
@@ -388,7 +391,7 @@ def parse_sweep_config(
         if isinstance(value, bool) or not isinstance(value, int) or not low <= value <= high:
             raise InvalidArgumentError(
                 f"{source}: sweep.{key}: expected a whole number from {low} to {high}, "
-                f"found {value!r}"
+                f"found {_shown(value)}"
             )
         numbers[key] = value
 

@@ -39,7 +39,7 @@ import numpy.typing as npt
 
 from mazesim._core import World
 from mazesim.episodes import MAX_STEPS
-from mazesim.errors import InvalidArgumentError
+from mazesim.errors import InvalidArgumentError, _shown
 from mazesim.learn.baseline import FlatConfig, FlatNavigator, train_flat
 from mazesim.learn.evaluate import evaluate
 from mazesim.learn.higher_training import HigherTraining
@@ -87,8 +87,9 @@ def _maze_world(setting: Setting, trainer: str) -> World:
     world = setting.world()
     if world.goal is None or world.cell_maze() is None:
         raise InvalidArgumentError(
-            f"setting {setting.id}: trainer {trainer!r} needs a world with a [grid] maze and a "
-            f"goal; {world.name!r} has {'no goal' if world.goal is None else 'no cell maze'}"
+            f"setting {setting.id}: trainer {_shown(trainer)} needs a world with a [grid] maze "
+            "and a "
+            f"goal; {_shown(world.name)} has {'no goal' if world.goal is None else 'no cell maze'}"
         )
     return world
 

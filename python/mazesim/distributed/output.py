@@ -36,7 +36,7 @@ from mazesim._figures import save_png
 from mazesim._paths import make_output_folder, read_input
 from mazesim.distributed.config import Setting
 from mazesim.distributed.tasks import RUN_FILE
-from mazesim.errors import InvalidArgumentError, MazesimIOError
+from mazesim.errors import InvalidArgumentError, MazesimIOError, _shown
 
 __all__ = [
     "CSV_COLUMNS",
@@ -105,7 +105,9 @@ def write_run_folder(out_dir: str, run_id: str, files: Mapping[str, bytes]) -> s
     """
     for name in files:
         if not name or os.path.basename(name) != name or name in (".", ".."):
-            raise InvalidArgumentError(f"expected a plain file name for a run file, found {name!r}")
+            raise InvalidArgumentError(
+                f"expected a plain file name for a run file, found {_shown(name)}"
+            )
     runs = os.path.join(out_dir, RUNS_DIR)
     make_output_folder(runs)
     target = os.path.join(runs, run_id)
@@ -225,4 +227,4 @@ def save_plot(path: str, title: str, runs: Sequence[Mapping[str, Any]]) -> None:
     try:
         save_png(figure, path)
     except OSError as error:
-        raise MazesimIOError(f"cannot write the sweep plot {path!r}: {error}") from error
+        raise MazesimIOError(f"cannot write the sweep plot {_shown(path)}: {error}") from error

@@ -33,7 +33,7 @@ import numpy as np
 import numpy.typing as npt
 
 from mazesim._core import __version__
-from mazesim.errors import InvalidArgumentError, UnknownNameError
+from mazesim.errors import InvalidArgumentError, UnknownNameError, _shown
 
 if TYPE_CHECKING:
     from mazesim.distributed.config import Setting
@@ -130,7 +130,7 @@ def resolve_trainer(name: str) -> str:
     if name not in TRAINERS or _trainer_function(name) is None:
         available = [n for n in TRAINERS if _trainer_function(n) is not None]
         raise UnknownNameError(
-            f"expected a trainer among auto, {', '.join(available)}; found {name!r}",
+            f"expected a trainer among auto, {', '.join(available)}; found {_shown(name)}",
             available=["auto", *available],
             name=name,
         )
@@ -148,13 +148,13 @@ def check_parameters(params: Mapping[str, Any], where: str = "grid") -> None:
     for name in UNUSED_PARAMETERS.get(trainer, ()):
         if params.get(name) is not None:
             raise InvalidArgumentError(
-                f"{where}.{name}: trainer {trainer!r} does not use it; expected it left out, "
-                f"found {params[name]!r}"
+                f"{where}.{name}: trainer {_shown(trainer)} does not use it; expected it left out, "
+                f"found {_shown(params[name])}"
             )
     for name, value in _REQUIRED_VALUES.get(trainer, {}).items():
         if params.get(name) != value:
             raise InvalidArgumentError(
-                f"{where}.{name}: trainer {trainer!r} runs with {name} = "
+                f"{where}.{name}: trainer {_shown(trainer)} runs with {name} = "
                 f"{json.dumps(value)} only, found {json.dumps(params.get(name))}"
             )
 
@@ -198,7 +198,7 @@ def train_and_evaluate(setting: Setting, threads: int = 1) -> TaskOutput:
     name = str(setting.params["trainer"])
     trainer = _trainer_function(name) if name in TRAINERS else None
     if trainer is None:
-        raise UnknownNameError(f"trainer {name!r} is not installed on {socket.gethostname()}")
+        raise UnknownNameError(f"trainer {_shown(name)} is not installed on {socket.gethostname()}")
     check_parameters(setting.params, f"setting {setting.id}")
     run = trainer(setting, threads)
     evaluation = run["evaluation"]

@@ -37,7 +37,7 @@ from typing import Any, Protocol
 import numpy as np
 import numpy.typing as npt
 
-from mazesim.errors import InvalidArgumentError
+from mazesim.errors import InvalidArgumentError, _shown
 
 __all__ = [
     "BaselineResult",
@@ -422,7 +422,7 @@ def evaluate(
     if not isinstance(episodes, (int, np.integer)) or isinstance(episodes, bool) or episodes < 1:
         raise InvalidArgumentError(
             f"expected episodes to be a whole number of at least 1 (one held-out environment "
-            f"each), found {episodes!r}"
+            f"each), found {_shown(episodes)}"
         )
     size = (5, 5) if maze_size is None else (int(maze_size[0]), int(maze_size[1]))
     envs = gymnasium.make_vec(

@@ -37,7 +37,7 @@ import numpy.typing as npt
 from mazesim.envs.maze_env import EPuckMazeEnv
 from mazesim.envs.options import MAX_ENV_CELLS
 from mazesim.envs.vector import EPuckMazeVectorEnv
-from mazesim.errors import InvalidArgumentError, WrongTypeError, _a_type
+from mazesim.errors import InvalidArgumentError, WrongTypeError, _a_type, _shown
 
 __all__ = ["MazeSizeCurriculum", "MazeSizeCurriculumWrapper"]
 
@@ -68,10 +68,10 @@ class MazeSizeCurriculum:
             raise InvalidArgumentError("expected at least one maze size, found none")
         if not 0.0 < float(promote_at) <= 1.0:
             raise InvalidArgumentError(
-                f"expected promote_at to be a success rate in (0, 1], found {promote_at!r}"
+                f"expected promote_at to be a success rate in (0, 1], found {_shown(promote_at)}"
             )
         if int(window) < 1:
-            raise InvalidArgumentError(f"expected window to be at least 1, found {window!r}")
+            raise InvalidArgumentError(f"expected window to be at least 1, found {_shown(window)}")
         self.sizes: tuple[tuple[int, int], ...] = tuple(checked)
         self.promote_at = float(promote_at)
         self.window = int(window)
@@ -132,7 +132,7 @@ class MazeSizeCurriculum:
         if world is not None:
             raise InvalidArgumentError(
                 "expected an env of random mazes (world='random'); found the fixed world "
-                f"{world.name!r}"
+                f"{_shown(world.name)}"
             )
         if target.options.world_sampler is not None:
             raise InvalidArgumentError(
@@ -194,6 +194,6 @@ def _checked_size(size: Any) -> tuple[int, int]:
     ):
         raise InvalidArgumentError(
             f"expected each maze size to be (width, height) of at least 2 cells each and at most "
-            f"{MAX_ENV_CELLS} cells in all, found {size!r}"
+            f"{MAX_ENV_CELLS} cells in all, found {_shown(size)}"
         )
     return int(values[0]), int(values[1])

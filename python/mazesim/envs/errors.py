@@ -25,6 +25,7 @@ from mazesim.errors import (
     WrongTypeError,
     _a_type,
     _closest_name,
+    _shown,
 )
 
 __all__ = [
@@ -67,7 +68,7 @@ def check_seed(seed: Any) -> int | None:
         return None
     if not is_seed(seed):
         raise InvalidArgumentError(
-            f"expected seed to be None or an int in 0..={MAX_SEED}, found {seed!r}"
+            f"expected seed to be None or an int in 0..={MAX_SEED}, found {_shown(seed)}"
         )
     return int(seed)
 
@@ -92,7 +93,7 @@ def check_options(options: Any, known: tuple[str, ...] = ()) -> Mapping[str, Any
         meant = None if key in known else _closest_name(str(key), list(known))
         if meant is not None:
             raise InvalidArgumentError(
-                f"expected reset options among {', '.join(map(repr, known))}, found {key!r}; "
-                f"did you mean {meant!r}?"
+                f"expected reset options among {', '.join(map(repr, known))}, found {_shown(key)}; "
+                f"did you mean {_shown(meant)}?"
             )
     return options

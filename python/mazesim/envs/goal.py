@@ -33,7 +33,7 @@ from mazesim._core import World
 from mazesim.envs.maze_env import EPuckMazeEnv
 from mazesim.envs.options import DEFAULT_MAX_EPISODE_STEPS, EnvOptions
 from mazesim.envs.vector import EPuckMazeVectorEnv
-from mazesim.errors import InvalidArgumentError
+from mazesim.errors import InvalidArgumentError, _shown
 
 __all__ = ["REWARD_TYPES", "MazeGoalEnv", "MazeGoalVectorEnv"]
 
@@ -319,7 +319,8 @@ class MazeGoalVectorEnv(VectorEnv[Observation, Any, Any]):
 def _check_reward_type(reward_type: str) -> None:
     if reward_type not in REWARD_TYPES:
         raise InvalidArgumentError(
-            f"expected reward_type to be one of {', '.join(REWARD_TYPES)}; found {reward_type!r}"
+            f"expected reward_type to be one of {', '.join(REWARD_TYPES)}; found "
+            f"{_shown(reward_type)}"
         )
 
 
@@ -327,7 +328,7 @@ def _check_goal(world: World, goal: tuple[float, float, float] | None, options: 
     """Refuses a world without a goal unless every episode draws its own."""
     if goal is None and options.start_goal != "random":
         raise InvalidArgumentError(
-            f"expected a world with a goal (or start_goal='random'); found {world.name!r} "
+            f"expected a world with a goal (or start_goal='random'); found {_shown(world.name)} "
             "without one"
         )
 

@@ -20,7 +20,7 @@ from mazesim.envs.navigation import (
 )
 from mazesim.envs.options import EnvOptions, draw_seed, json_world_spec
 from mazesim.envs.spaces import ActionConverter, ObservationLayout, sensor_ranges
-from mazesim.errors import InvalidArgumentError, WrongTypeError, _a_type
+from mazesim.errors import InvalidArgumentError, WrongTypeError, _a_type, _shown
 from mazesim.maze import PathDistanceTable
 from mazesim.render.episode import EpisodeTrace
 from mazesim.render.topdown import TopDownRenderer
@@ -79,7 +79,8 @@ def check_render_mode(render_mode: str | None, modes: Sequence[str] = RENDER_MOD
     (WrongTypeError for one that is not a str)."""
     if render_mode is not None and render_mode not in modes:
         raise InvalidArgumentError(
-            f"expected render_mode to be None or one of {', '.join(modes)}; found {render_mode!r}"
+            f"expected render_mode to be None or one of {', '.join(modes)}; found "
+            f"{_shown(render_mode)}"
         )
 
 

@@ -85,7 +85,7 @@ from gymnasium import spaces
 
 from mazesim._core import RobotProfile, TaskFeatures, World
 from mazesim.envs.spaces import NOISE_MARGIN, sensor_ranges
-from mazesim.errors import InvalidArgumentError
+from mazesim.errors import InvalidArgumentError, _shown
 from mazesim.maze import (
     EAST,
     NORTH,
@@ -228,7 +228,7 @@ def start_and_goal_cells(world: World) -> tuple[CellMaze, list[tuple[int, int]]]
     """
     if world.cell_maze() is None:
         raise InvalidArgumentError(
-            f'expected a world with a cell maze for start_goal="random", found {world.name!r}'
+            f'expected a world with a cell maze for start_goal="random", found {_shown(world.name)}'
         )
     maze = CellMaze(world)
     # The largest set of cells joined by open sides, row-major from the north-west (the first
@@ -237,7 +237,7 @@ def start_and_goal_cells(world: World) -> tuple[CellMaze, list[tuple[int, int]]]
     if len(cells) < 2:
         raise InvalidArgumentError(
             f'expected two cells that join each other for start_goal="random", found none in '
-            f"{world.name!r}"
+            f"{_shown(world.name)}"
         )
     return maze, cells
 

@@ -28,7 +28,7 @@ from mazesim.envs.navigation import (
     start_and_goal_cells,
 )
 from mazesim.envs.reward import RewardWeights
-from mazesim.errors import InvalidArgumentError, _closest_name
+from mazesim.errors import InvalidArgumentError, _closest_name, _shown
 
 __all__ = [
     "ACTION_MODES",
@@ -191,7 +191,7 @@ class EnvOptions:
         if action_mode not in ACTION_MODES:
             raise InvalidArgumentError(
                 f"expected action_mode to be one of {', '.join(ACTION_MODES)}; "
-                f"found {action_mode!r}"
+                f"found {_shown(action_mode)}"
             )
         for name, value, accepted in (
             ("observation", observation, OBSERVATIONS),
@@ -199,18 +199,20 @@ class EnvOptions:
         ):
             if value not in accepted:
                 raise InvalidArgumentError(
-                    f"expected {name} to be one of {', '.join(accepted)}; found {value!r}"
+                    f"expected {name} to be one of {', '.join(accepted)}; found {_shown(value)}"
                 )
         flags = (("noise", noise), ("include_pose", include_pose), ("clip_actions", clip_actions))
         for name, flag in flags:
             if not isinstance(flag, (bool, np.bool_)):
-                raise InvalidArgumentError(f"expected {name} to be True or False, found {flag!r}")
+                raise InvalidArgumentError(
+                    f"expected {name} to be True or False, found {_shown(flag)}"
+                )
         if control_step_ms is not None and not (
             isinstance(control_step_ms, numbers.Real) and control_step_ms > 0
         ):
             raise InvalidArgumentError(
                 f"expected control_step_ms to be a positive number of ms or None, "
-                f"found {control_step_ms!r}"
+                f"found {_shown(control_step_ms)}"
             )
         sizes = _items(maze_size)
         if (
@@ -220,13 +222,13 @@ class EnvOptions:
         ):
             raise InvalidArgumentError(
                 f"expected maze_size to be (width, height) of at least 2 cells each and at most "
-                f"{MAX_ENV_CELLS} cells in all, found {maze_size!r}"
+                f"{MAX_ENV_CELLS} cells in all, found {_shown(maze_size)}"
             )
         sides = (render_size, render_size) if _is_count(render_size) else _items(render_size)
         if len(sides) != 2 or not all(_is_count(n) and 16 <= n <= 4096 for n in sides):
             raise InvalidArgumentError(
                 f"expected render_size to be pixels (16 to 4096) or (width, height), "
-                f"found {render_size!r}"
+                f"found {_shown(render_size)}"
             )
         sampler = world if callable(world) and not isinstance(world, World) else None
         resolved = None if _is_random(world) or sampler is not None else _resolve_world(world)
@@ -300,7 +302,8 @@ class EnvOptions:
         if not isinstance(drawn, (World, str, os.PathLike)) or _is_random(drawn):
             raise InvalidArgumentError(
                 f"expected the world sampler {_callable_name(sampler)} to return a World, a "
-                f"built-in world name or a path to a world file; found {drawn!r}. It is called "
+                f"built-in world name or a path to a world file; found {_shown(drawn)}. It is "
+                "called "
                 "with the env's numpy.random.Generator at each reset: return e.g. "
                 "mazesim.generate_maze(5, 5, seed=int(rng.integers(2**32)))"
             )
@@ -340,7 +343,7 @@ def _check_cells(world: World) -> None:
         raise InvalidArgumentError(
             f"expected a world of at most {MAX_ENV_CELLS} maze cells for a gymnasium env (its "
             f"distance tables take about 2 kB and 60 us a cell), found {maze['rows']} x "
-            f"{maze['cols']} = {cells} in {world.name!r}; the simulators (Simulator, "
+            f"{maze['cols']} = {cells} in {_shown(world.name)}; the simulators (Simulator, "
             f"BatchSimulator) take larger worlds"
         )
 
@@ -411,7 +414,8 @@ def _resolve_world(world: WorldOption) -> World:
         raise InvalidArgumentError(
             f'expected world to be a built-in world name, a path, "random", a World, '
             f'{{"toml": ..., "source": ...}} or a callable; '
-            f'found {world!r}. An env runs one world, or with "random" a new generated maze of '
+            f'found {_shown(world)}. An env runs one world, or with "random" a new generated '
+            "maze of "
             "maze_size cells at each reset; for mazes of your own choosing give a callable "
             "that draws each episode's world from the env's RNG: world=lambda rng: "
             "worlds[rng.integers(len(worlds))]"

@@ -35,7 +35,7 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
-from mazesim.errors import InvalidArgumentError
+from mazesim.errors import InvalidArgumentError, _shown
 from mazesim.maze import GoalDistance, PathDistanceTable
 
 __all__ = ["GoalDistance", "PathDistanceTable", "RewardWeights", "step_reward"]
@@ -61,7 +61,7 @@ class RewardWeights:
             value = getattr(self, name)
             if not isinstance(value, numbers.Real) or not math.isfinite(value):
                 raise InvalidArgumentError(
-                    f"expected a finite number for the {name} reward weight, found {value!r}"
+                    f"expected a finite number for the {name} reward weight, found {_shown(value)}"
                 )
             # A numpy scalar (np.float32(5.0) from a sweep) weighs as the Python float it holds,
             # so rewards stay Python floats and float64 arrays whatever the weights' types.

@@ -49,7 +49,7 @@ from gymnasium import spaces
 
 from mazesim._core import RobotProfile, World
 from mazesim.actions import ACTION_CODES, WHEEL_SPEED_FRACTIONS
-from mazesim.errors import InvalidActionError
+from mazesim.errors import InvalidActionError, _shown
 
 __all__ = [
     "NOISE_MARGIN",
@@ -196,7 +196,7 @@ class ActionConverter:
             if array.shape != () or array.dtype.kind not in "iu":
                 raise InvalidActionError(
                     f"expected an integer action in 0..{len(ACTION_CODES) - 1}, "
-                    f"found {action!r} of type {type(action).__name__}"
+                    f"found {_shown(action)} of type {type(action).__name__}"
                 )
             index = int(array)
             if not 0 <= index < len(ACTION_CODES):
@@ -226,7 +226,9 @@ class ActionConverter:
                 )
             return self.table[array]
         _check_fractions(array, (num_envs, 2), " in environment {env}", self.clip)
-        fractions = array.astype(np.float32)
+        # A new C-ordered array whatever the caller's layout (a Fortran-ordered or transposed
+        # policy output kept its order through astype and was refused by the batch).
+        fractions = np.array(array, dtype=np.float32, order="C")
         if self.clip:
             np.clip(fractions, -1.0, 1.0, out=fractions)
         return fractions * self.max_speed

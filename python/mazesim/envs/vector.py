@@ -45,7 +45,7 @@ from mazesim.envs.options import (
 )
 from mazesim.envs.reward import step_reward
 from mazesim.envs.spaces import ActionConverter, ObservationLayout, sensor_ranges
-from mazesim.errors import InvalidArgumentError, WrongTypeError, _a_type
+from mazesim.errors import InvalidArgumentError, WrongTypeError, _a_type, _shown
 from mazesim.maze import GoalDistance, PathDistanceTable
 from mazesim.render.episode import EpisodeTrace
 from mazesim.render.topdown import TopDownRenderer
@@ -134,12 +134,15 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
             threads = merged["threads"]
             autoreset_mode = merged["autoreset_mode"]
         if not isinstance(num_envs, (int, np.integer)) or num_envs < 1:
-            raise InvalidArgumentError(f"expected num_envs to be at least 1, found {num_envs!r}")
+            raise InvalidArgumentError(
+                f"expected num_envs to be at least 1, found {_shown(num_envs)}"
+            )
         if max_episode_steps is not None and (
             not isinstance(max_episode_steps, (int, np.integer)) or max_episode_steps < 1
         ):
             raise InvalidArgumentError(
-                f"expected max_episode_steps to be at least 1 or None, found {max_episode_steps!r}"
+                "expected max_episode_steps to be at least 1 or None, found "
+                f"{_shown(max_episode_steps)}"
             )
         check_render_mode(render_mode, VECTOR_RENDER_MODES)
         self.autoreset_mode = _autoreset_mode(autoreset_mode)
@@ -452,7 +455,7 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
         for i, one in enumerate(seed):
             if one is not None and not is_seed(one):
                 raise InvalidArgumentError(
-                    f"expected seed {i} to be None or an int in 0..={MAX_SEED}, found {one!r}"
+                    f"expected seed {i} to be None or an int in 0..={MAX_SEED}, found {_shown(one)}"
                 )
         return [None if one is None else int(one) for one in seed]
 
@@ -583,6 +586,6 @@ def _autoreset_mode(mode: AutoresetMode | str) -> AutoresetMode:
     spelt = str(mode).replace("_", "").replace("-", "").lower()
     meant = [m for m in modes if spelt in (m.value.lower(), m.name.replace("_", "").lower())]
     raise InvalidArgumentError(
-        f"expected autoreset_mode to be one of {names}; found {mode!r}"
-        + (f"; did you mean {meant[0].value!r}?" if meant else "")
+        f"expected autoreset_mode to be one of {names}; found {_shown(mode)}"
+        + (f"; did you mean {_shown(meant[0].value)}?" if meant else "")
     )

@@ -26,7 +26,13 @@ import numpy as np
 import numpy.typing as npt
 
 from mazesim._paths import make_output_folder
-from mazesim.errors import InvalidArgumentError, MissingDependencyError, WrongTypeError, _a_type
+from mazesim.errors import (
+    InvalidArgumentError,
+    MissingDependencyError,
+    WrongTypeError,
+    _a_type,
+    _shown,
+)
 
 if importlib.util.find_spec("stable_baselines3") is None:
     raise MissingDependencyError(
@@ -115,11 +121,11 @@ def make_vec_env(
             "expected wrapper_class and wrapper_kwargs to be None: the batch engine steps every "
             "environment at once, so there is no single env to wrap (use "
             "stable_baselines3.common.env_util.make_vec_env for that); "
-            f"found wrapper_class={wrapper_class!r}, wrapper_kwargs={wrapper_kwargs!r}"
+            f"found wrapper_class={_shown(wrapper_class)}, wrapper_kwargs={_shown(wrapper_kwargs)}"
         )
     if vec_env_cls is not None and vec_env_cls is not MazesimVecEnv:
         raise InvalidArgumentError(
-            f"expected vec_env_cls to be None or MazesimVecEnv, found {vec_env_cls!r}"
+            f"expected vec_env_cls to be None or MazesimVecEnv, found {_shown(vec_env_cls)}"
         )
     keywords = {**(env_kwargs or {}), **(vec_env_kwargs or {}), **options}
     vector = gymnasium.make_vec(
@@ -131,7 +137,7 @@ def make_vec_env(
     )
     native = vector.unwrapped
     if not isinstance(native, _NATIVE):
-        raise InvalidArgumentError(f"expected a mazesim task, found {env_id!r}")
+        raise InvalidArgumentError(f"expected a mazesim task, found {_shown(env_id)}")
     venv: VecEnv = MazesimVecEnv(native)
     if seed is not None:
         venv.seed(seed + start_index)
@@ -253,7 +259,7 @@ class MazesimVecEnv(VecEnv):
     def set_attr(self, attr_name: str, value: Any, indices: Any = None) -> None:
         """Not supported: the environments share one engine."""
         raise InvalidArgumentError(
-            f"expected no set_attr on the batch engine's environments, found {attr_name!r}"
+            f"expected no set_attr on the batch engine's environments, found {_shown(attr_name)}"
         )
 
     def env_method(
@@ -273,7 +279,8 @@ class MazesimVecEnv(VecEnv):
         if method_name in _WHOLE_ENGINE_METHODS:
             raise InvalidArgumentError(
                 f"expected env_method of a method that acts on one environment, found "
-                f"{method_name!r}, which acts on all {self.num_envs} environments of the batch "
+                f"{_shown(method_name)}, which acts on all {self.num_envs} environments of the "
+                "batch "
                 f"engine at once: call the VecEnv's own {method_name}()"
             )
         if method_name == "render" and not method_args and not method_kwargs:

@@ -35,7 +35,7 @@ import numpy.typing as npt
 from mazesim._core import EpisodeLimits, RunSettings, TabularSettings
 from mazesim.actions import ACTION_CODES
 from mazesim.episodes import EpisodeBatch, EpisodeResult, EpisodeSchedule, Watcher
-from mazesim.errors import InvalidArgumentError
+from mazesim.errors import InvalidArgumentError, _shown
 from mazesim.learn.discretise import NUM_SENSORS, NUM_STATES, distance_levels, volts_to_cm
 from mazesim.learn.policy import HierarchicalPolicy, StepRecord
 from mazesim.learn.subtasks import NUM_SUBTASKS, SUBTASK_ACTIONS
@@ -223,7 +223,7 @@ def run_navigator_episodes(
     if not stretches_apply(nav, policy):
         raise InvalidArgumentError(
             "expected a greedy HierarchicalPolicy and events from the ground truth, found a "
-            f"{type(policy).__name__} with events from {nav.events_from!r}"
+            f"{type(policy).__name__} with events from {_shown(nav.events_from)}"
         )
     if stretch_steps < 1:
         raise InvalidArgumentError(f"expected a stretch of at least 1 step, found {stretch_steps}")

@@ -30,7 +30,7 @@ import numpy.typing as npt
 
 from mazesim._core import RobotProfile, World
 from mazesim.episodes import EpisodeBatch, EpisodeResult, run_episodes
-from mazesim.errors import InvalidArgumentError
+from mazesim.errors import InvalidArgumentError, _shown
 from mazesim.learn.higher import HigherLevel
 
 __all__ = ["NavigatorEpisodes"]
@@ -94,7 +94,7 @@ class NavigatorEpisodes:
         if self.kind not in ("hierarchical", "flat") or any(t is None for t in tables):
             raise InvalidArgumentError(
                 f"expected a hierarchical navigator with lower and higher tables or a flat one "
-                f"with its table, found kind {self.kind!r}"
+                f"with its table, found kind {_shown(self.kind)}"
             )
         if self.kind == "flat" and len(self.world_tomls) != 1:
             raise InvalidArgumentError("the flat baseline drives the one world it learned")

@@ -21,7 +21,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
-from mazesim.errors import PolicyFormatError
+from mazesim.errors import PolicyFormatError, _shown
 
 __all__ = [
     "MAX_DEPTH",
@@ -166,7 +166,9 @@ class Text(Node):
         if self.length is not None and len(value) != self.length:
             raise self.fail(where, path, f"a string of {self.length} characters", value)
         if self.alphabet is not None and value.strip(self.alphabet):
-            raise self.fail(where, path, f"a string of the characters {self.alphabet!r}", value)
+            raise self.fail(
+                where, path, f"a string of the characters {_shown(self.alphabet)}", value
+            )
 
 
 @dataclass(frozen=True)

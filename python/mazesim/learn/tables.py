@@ -64,7 +64,13 @@ import numpy.typing as npt
 from mazesim._atomic import atomic_file, remove_stale_temporaries
 from mazesim._paths import file_described, make_output_folder, read_input
 from mazesim.actions import ACTION_CODES, WHEEL_SPEED_FRACTIONS
-from mazesim.errors import InvalidArgumentError, MazesimIOError, PolicyFormatError, _closest_name
+from mazesim.errors import (
+    InvalidArgumentError,
+    MazesimIOError,
+    PolicyFormatError,
+    _closest_name,
+    _shown,
+)
 from mazesim.learn.discretise import LEVEL_EDGES_CM, NUM_STATES, SENSOR_ORDER, SHARP_TABLE
 from mazesim.learn.higher import event_state_names
 from mazesim.learn.lower import LowerTables, lower_table_shape
@@ -199,7 +205,7 @@ def _read_header(
     elif version in ((2, 0), (3, 0)):
         header = np.lib.format.read_array_header_2_0(stream, max_header_size=MAX_HEADER_BYTES)
     else:
-        raise PolicyFormatError(f"{where}: member {name!r}: unknown .npy version {version}")
+        raise PolicyFormatError(f"{where}: member {_shown(name)}: unknown .npy version {version}")
     shape, fortran_order, dtype = header
     return tuple(shape), dtype, bool(fortran_order)
 
@@ -210,30 +216,32 @@ def _read_member(
     name = info.filename[: -len(".npy")]
     if info.compress_type not in (zipfile.ZIP_STORED, zipfile.ZIP_DEFLATED):
         raise PolicyFormatError(
-            f"{where}: member {name!r}: expected stored or deflated data, "
+            f"{where}: member {_shown(name)}: expected stored or deflated data, "
             f"found compression method {info.compress_type}"
         )
     largest = spec.nbytes + MAX_HEADER_BYTES + 16
     if not spec.nbytes <= info.file_size <= largest:
         raise PolicyFormatError(
-            f"{where}: member {name!r}: expected {spec.nbytes} to {largest} bytes for "
+            f"{where}: member {_shown(name)}: expected {spec.nbytes} to {largest} bytes for "
             f"{spec.dtype} {list(spec.shape)}, found a declared size of {info.file_size}"
         )
     with archive.open(info) as stream:
         shape, dtype, fortran_order = _read_header(stream, name, where)
         if dtype.hasobject:
             raise PolicyFormatError(
-                f"{where}: member {name!r}: expected {spec.dtype} numbers, found Python objects"
+                f"{where}: member {_shown(name)}: expected {spec.dtype} numbers, found Python "
+                "objects"
             )
         if shape != spec.shape or dtype != np.dtype(spec.dtype) or fortran_order:
             found = f"{dtype} {list(shape)}{' (Fortran order)' if fortran_order else ''}"
             raise PolicyFormatError(
-                f"{where}: member {name!r}: expected {spec.dtype} {list(spec.shape)}, found {found}"
+                f"{where}: member {_shown(name)}: expected {spec.dtype} {list(spec.shape)}, "
+                f"found {found}"
             )
         data = stream.read(spec.nbytes)
         if len(data) != spec.nbytes or stream.read(1):
             raise PolicyFormatError(
-                f"{where}: member {name!r}: expected {spec.nbytes} bytes of data, "
+                f"{where}: member {_shown(name)}: expected {spec.nbytes} bytes of data, "
                 f"found {len(data)}{' and more' if len(data) == spec.nbytes else ''}"
             )
     return np.frombuffer(data, dtype=dtype).reshape(spec.shape).copy()
@@ -243,13 +251,13 @@ def _read_document(archive: zipfile.ZipFile, member: str, limit: int, where: str
     info = archive.getinfo(member)
     if info.file_size > limit:
         raise PolicyFormatError(
-            f"{where}: member {member!r}: expected at most {limit} bytes, "
+            f"{where}: member {_shown(member)}: expected at most {limit} bytes, "
             f"found a declared size of {info.file_size}"
         )
     with archive.open(info) as stream:
         data = stream.read(limit + 1)
     if len(data) > limit:
-        raise PolicyFormatError(f"{where}: member {member!r}: expected at most {limit} bytes")
+        raise PolicyFormatError(f"{where}: member {_shown(member)}: expected at most {limit} bytes")
     return data
 
 
@@ -330,7 +338,7 @@ def write_archive(
         for name, values in arrays.items():
             array = np.ascontiguousarray(values)
             if array.dtype.hasobject:
-                raise InvalidArgumentError(f"table {name!r}: expected numbers, found objects")
+                raise InvalidArgumentError(f"table {_shown(name)}: expected numbers, found objects")
             with member(f"{name}.npy") as handle:
                 np.lib.format.write_array(handle, array, allow_pickle=False)
         for member_name, text in (documents or {}).items():
@@ -423,7 +431,7 @@ def _check_format(metadata: Any, where: str, expected_format: str) -> dict[str, 
     found = metadata.get("format")
     if found != expected_format:
         raise PolicyFormatError(
-            f"{where}: expected format {expected_format!r}, found {describe(found)}"
+            f"{where}: expected format {_shown(expected_format)}, found {describe(found)}"
         )
     version = metadata.get("version")
     if isinstance(version, bool) or version != FORMAT_VERSION:
@@ -573,7 +581,7 @@ def save_policy(policy: TrainedPolicy, folder: str | os.PathLike[str]) -> None:
             raise PolicyFormatError("a flat navigator needs its table")
         arrays["flat"] = np.asarray(policy.flat_q, dtype=np.float64)
     else:
-        raise PolicyFormatError(f"expected a kind in {KINDS}, found {policy.kind!r}")
+        raise PolicyFormatError(f"expected a kind in {KINDS}, found {_shown(policy.kind)}")
     metadata: dict[str, Any] = {"format": FORMAT, "version": FORMAT_VERSION, "kind": policy.kind}
     metadata.update(encoding_metadata(door_distance))
     metadata["world"] = {
@@ -698,13 +706,16 @@ def load_policy(folder: str | os.PathLike[str] | None = None) -> TrainedPolicy:
             _closest_name(str(path), list(SHIPPED_NAVIGATORS)) if path.name == str(path) else None
         )
         raise PolicyFormatError(
-            f"{meta_path}: no such file: there is no folder {str(path)!r}{where}; a navigator is "
+            f"{meta_path}: no such file: there is no folder {_shown(str(path))}{where}; a "
+            "navigator is "
             f"the folder 'mazesim train --out DIR' writes, or a shipped one ({shipped}; without "
-            "--policy, the seed-maze navigator)" + (f"; did you mean {meant!r}?" if meant else "")
+            "--policy, the seed-maze navigator)"
+            + (f"; did you mean {_shown(meant)}?" if meant else "")
         )
     if not meta_path.exists() and checkpoint_exists(path):
         raise PolicyFormatError(
-            f"{meta_path}: no such file: {str(path)!r} holds the checkpoint of a 'mazesim train' "
+            f"{meta_path}: no such file: {_shown(str(path))} holds the checkpoint of a "
+            "'mazesim train' "
             "that has not finished (interrupted, or still running): run that command again with "
             "--resume to finish it, then evaluate it"
         )
@@ -734,7 +745,7 @@ def load_policy(folder: str | os.PathLike[str] | None = None) -> TrainedPolicy:
         if not isinstance(lower_settings["hold_heading"], bool):
             raise PolicyFormatError(
                 f"{meta_path}: expected training.lower.hold_heading to be true or false, "
-                f"found {lower_settings['hold_heading']!r}"
+                f"found {_shown(lower_settings['hold_heading'])}"
             )
     if kind == "hierarchical":
         # The encoding was checked against both (``arrays_of``): its phases say which it is.
@@ -753,7 +764,7 @@ def load_policy(folder: str | os.PathLike[str] | None = None) -> TrainedPolicy:
 def _finite(table: npt.NDArray[Any], name: str, where: Path) -> npt.NDArray[np.float64]:
     """A table of the archive (its shape and dtype checked by :func:`read_archive`), if finite."""
     if not np.all(np.isfinite(table)):
-        raise PolicyFormatError(f"{where}: table {name!r} holds NaN or infinite values")
+        raise PolicyFormatError(f"{where}: table {_shown(name)} holds NaN or infinite values")
     return table
 
 

@@ -43,7 +43,7 @@ from mazesim._paths import shell_command
 from mazesim._settings import setting
 from mazesim.batch import RobotChoice
 from mazesim.episodes import EpisodeResult, learning_problems, shortest_path_steps
-from mazesim.errors import InvalidArgumentError
+from mazesim.errors import InvalidArgumentError, _shown
 from mazesim.learn.baseline import train_flat
 from mazesim.learn.checkpoint import CHECKPOINT_FORMAT, Checkpoint
 from mazesim.learn.fleet import Fleet
@@ -404,7 +404,7 @@ def train(
     if bool(settings.randomise) != callable(robot):
         raise InvalidArgumentError(
             "expected a robot draw exactly with randomisation ranges in the settings, found "
-            f"randomise={settings.randomise!r} and robot={robot!r}"
+            f"randomise={_shown(settings.randomise)} and robot={_shown(robot)}"
         )
     world = navigator_world(settings.world)
     lower_settings = settings.lower()

@@ -17,7 +17,7 @@ import numpy.typing as npt
 
 from mazesim._core import World
 from mazesim.actions import ACTION_CODES
-from mazesim.errors import PolicyFormatError, UnknownNameError
+from mazesim.errors import PolicyFormatError, UnknownNameError, _shown
 from mazesim.learn.subtasks import CONTROL_STEP_MS
 from mazesim.maze import world_hash
 
@@ -139,7 +139,7 @@ class TrainedPolicy:
         if not os.path.isfile(self.world_file):
             where = f" {self.source}" if self.source else ""
             raise UnknownNameError(
-                f"the navigator{where} learned world {self.world_name!r} from "
+                f"the navigator{where} learned world {_shown(self.world_name)} from "
                 f"{self.world_file}, which is no longer there: put the file back, or name the "
                 "world with --world FILE"
             )
@@ -151,9 +151,9 @@ class TrainedPolicy:
         if digest != self.world_sha256:
             where = f" ({self.source})" if self.source else ""
             raise PolicyFormatError(
-                f"the navigator{where} learned world {self.world_name!r} "
+                f"the navigator{where} learned world {_shown(self.world_name)} "
                 f"(sha256 {self.world_sha256[:12]}...), "
-                f"not {world.name!r} (sha256 {digest[:12]}...)"
+                f"not {_shown(world.name)} (sha256 {digest[:12]}...)"
             )
 
 

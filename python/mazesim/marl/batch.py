@@ -22,7 +22,7 @@ import numpy.typing as npt
 from mazesim._core import BatchSimulator, RobotProfile
 from mazesim._sizes import MOST_ENVS
 from mazesim.envs.errors import MAX_SEED, is_seed
-from mazesim.errors import InvalidActionError, InvalidArgumentError
+from mazesim.errors import InvalidActionError, InvalidArgumentError, _shown
 from mazesim.marl.tasks import EpisodeDraw, MultiRobotTask, RobotStates, agent_names
 
 __all__ = ["MultiRobotBatch", "StepResult"]
@@ -119,7 +119,7 @@ class MultiRobotBatch:
             if len(seeds) != n or not all(is_seed(s) for s in seeds):
                 raise InvalidArgumentError(
                     f"expected seed to be None, an int in 0..={MAX_SEED} or {n} of them, "
-                    f"found {seed!r:.200}"
+                    f"found {_shown(seed)}"
                 )
             self._rngs = [np.random.default_rng(s) for s in seeds]
         elif not self._rngs:
@@ -196,7 +196,7 @@ class MultiRobotBatch:
             raise InvalidActionError("expected finite actions, found NaN or infinite values")
         applied = np.where(self.live[..., None], np.clip(wanted, -1.0, 1.0), np.float32(0.0))
         self.actions[...] = applied
-        commands = (applied * np.float32(self.max_wheel_speed)).astype(np.float32)
+        commands = np.array(applied * np.float32(self.max_wheel_speed), np.float32, order="C")
         self.simulator.step(*self._buffers(commands))
         self.steps += 1
         live = self.live.copy()

@@ -13,7 +13,7 @@ from pettingzoo.utils.conversions import parallel_to_aec_wrapper
 from pettingzoo.utils.wrappers import OrderEnforcingWrapper
 
 from mazesim.envs.errors import ResetNeededError
-from mazesim.errors import InvalidArgumentError, _closest_name
+from mazesim.errors import InvalidArgumentError, _closest_name, _shown
 from mazesim.marl.batch import MultiRobotBatch
 from mazesim.marl.parallel import MultiRobotParallelEnv
 from mazesim.marl.tasks import MultiRobotTask
@@ -96,8 +96,10 @@ def _refusing_unknown_options(
             if name not in names:
                 meant = _closest_name(name, own + names)
                 raise InvalidArgumentError(
-                    f"{where}: expected no argument named {name!r}, found one; its arguments: "
-                    f"{', '.join(own + names)}" + (f"; did you mean {meant!r}?" if meant else "")
+                    f"{where}: expected no argument named {_shown(name)}, found one; its "
+                    "arguments: "
+                    f"{', '.join(own + names)}"
+                    + (f"; did you mean {_shown(meant)}?" if meant else "")
                 )
         return task(**options)
 

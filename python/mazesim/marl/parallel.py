@@ -18,7 +18,7 @@ import numpy.typing as npt
 from pettingzoo import ParallelEnv
 
 from mazesim.envs.errors import EnvClosedError, ResetNeededError, check_options, check_seed
-from mazesim.errors import InvalidActionError, InvalidArgumentError, _a_type
+from mazesim.errors import InvalidActionError, InvalidArgumentError, _a_type, _shown
 from mazesim.marl.batch import MultiRobotBatch
 from mazesim.marl.render import SwarmRenderer
 from mazesim.marl.tasks import MultiRobotTask
@@ -54,7 +54,7 @@ class MultiRobotParallelEnv(ParallelEnv[str, Observation, npt.NDArray[np.float32
     ) -> None:
         if render_mode not in (None, "rgb_array"):
             raise InvalidArgumentError(
-                f'expected render_mode None or "rgb_array", found {render_mode!r}'
+                f'expected render_mode None or "rgb_array", found {_shown(render_mode)}'
             )
         self.metadata = {**type(self).metadata, "name": task.name}
         self.render_mode = render_mode

@@ -48,7 +48,7 @@ import numpy.typing as npt
 from mazesim._atomic import atomic_file
 from mazesim._core import RobotProfile, World, robot_profile_names
 from mazesim._paths import found_kind, read_input
-from mazesim.errors import MazesimError, RunFormatError
+from mazesim.errors import MazesimError, RunFormatError, _shown
 from mazesim.replay.run_fields import RunFields
 
 __all__ = [
@@ -518,11 +518,13 @@ def run_from_json(values: Any, source: str = "<run>") -> RecordedRun:
     """
     if not isinstance(values, dict) or values.get("format") != FORMAT_NAME:
         found = values.get("format") if isinstance(values, dict) else type(values).__name__
-        raise RunFormatError(f"{source}: expected format {FORMAT_NAME!r}, found {found!r}")
+        raise RunFormatError(
+            f"{source}: expected format {_shown(FORMAT_NAME)}, found {_shown(found)}"
+        )
     version = str(values.get("version", ""))
     major_text, _, minor_text = version.partition(".")
     if not all(p.isdecimal() and len(p) <= 6 for p in (major_text, minor_text or "0")):
-        raise RunFormatError(f"{source}: expected a version such as '1.0', found {version!r}")
+        raise RunFormatError(f"{source}: expected a version such as '1.0', found {_shown(version)}")
     found = (int(major_text), int(minor_text or "0"))
     if found[0] != FORMAT_VERSION[0] or found > FORMAT_VERSION:
         newer = found > FORMAT_VERSION
@@ -632,7 +634,9 @@ def _robots_from_json(fields: RunFields, values: Any, robot: str) -> list[RunRob
             low = robots[-1].from_frame
             robots[-1].until_frame = fields.whole(until, f"{where}.until_frame", low, 2**40)
     if robots and robots[0].profile != robot:
-        raise fields.fail("robots[0].profile", f"the run's robot {robot!r}", robots[0].profile)
+        raise fields.fail(
+            "robots[0].profile", f"the run's robot {_shown(robot)}", robots[0].profile
+        )
     return robots
 
 

@@ -23,7 +23,7 @@ import numpy as np
 import numpy.typing as npt
 
 from mazesim._atomic import atomic_file
-from mazesim.errors import InvalidArgumentError, MissingDependencyError
+from mazesim.errors import InvalidArgumentError, MissingDependencyError, _shown
 from mazesim.render.topdown import TopDownRenderer
 from mazesim.replay.run import RecordedEpisode, RecordedRun
 
@@ -43,7 +43,7 @@ def video_format(path: str | os.PathLike[str]) -> str:
     if suffix not in VIDEO_FORMATS:
         raise InvalidArgumentError(
             f"expected a video file ending in {' or '.join(VIDEO_FORMATS)}, "
-            f"found {os.fspath(path)!r}"
+            f"found {_shown(os.fspath(path))}"
         )
     return suffix
 

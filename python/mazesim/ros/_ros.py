@@ -17,7 +17,7 @@ import warnings
 from types import FrameType, SimpleNamespace
 from typing import Any
 
-from mazesim.errors import InvalidArgumentError, MazesimError, MissingDependencyError
+from mazesim.errors import InvalidArgumentError, MazesimError, MissingDependencyError, _shown
 
 #: Seconds after which a node says it is still waiting for the bridge.
 WAITING_NOTICE_S = 5.0
@@ -218,7 +218,8 @@ def subscriber_count(rospy: Any, given: Any) -> int:
     count = rospy.get_param("~wait_for_subscribers", 1) if given is None else given
     if isinstance(count, bool) or not isinstance(count, int) or count < 1:
         raise InvalidArgumentError(
-            f"expected parameter wait_for_subscribers to be a whole number >= 1; found {count!r}"
+            "expected parameter wait_for_subscribers to be a whole number >= 1; found "
+            f"{_shown(count)}"
         )
     return count
 

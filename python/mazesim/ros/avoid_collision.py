@@ -17,7 +17,7 @@ import math
 from typing import Any
 
 from mazesim.controllers import AvoidCollision
-from mazesim.errors import InvalidArgumentError
+from mazesim.errors import InvalidArgumentError, _shown
 from mazesim.ros import topics
 from mazesim.ros._ros import publisher, start_node, subscriber_count, wait_for_subscribers
 
@@ -34,7 +34,7 @@ def _positive(rospy: Any, name: str, option: float | None, default: float) -> fl
     except (TypeError, ValueError):
         number = math.nan
     if not (math.isfinite(number) and number > 0.0):
-        raise InvalidArgumentError(f"expected parameter {name} > 0; found {value!r}")
+        raise InvalidArgumentError(f"expected parameter {name} > 0; found {_shown(value)}")
     return number
 
 

@@ -61,7 +61,7 @@ from typing import Any
 import mazesim
 from mazesim._core import Simulator, World
 from mazesim.actions import wheel_speeds
-from mazesim.errors import InvalidArgumentError, MazesimError
+from mazesim.errors import InvalidArgumentError, MazesimError, _shown
 from mazesim.ros import standard, topics
 from mazesim.ros._ros import publisher, start_node
 from mazesim.ros.bag import BagWriter
@@ -119,29 +119,32 @@ class BridgeSettings:
         """Raises InvalidArgumentError naming the first parameter that is out of range."""
         if self.mode not in MODES:
             raise InvalidArgumentError(
-                f"expected parameter mode to be one of {', '.join(MODES)}; found {self.mode!r}"
+                f"expected parameter mode to be one of {', '.join(MODES)}; found "
+                f"{_shown(self.mode)}"
             )
         if not (math.isfinite(self.speed) and self.speed > 0.0):
             raise InvalidArgumentError(
-                f"expected parameter speed to be a positive factor; found {self.speed!r}"
+                f"expected parameter speed to be a positive factor; found {_shown(self.speed)}"
             )
         if not (math.isfinite(self.duration) and self.duration >= 0.0):
             raise InvalidArgumentError(
                 f"expected parameter duration to be seconds >= 0 (0: no limit); "
-                f"found {self.duration!r}"
+                f"found {_shown(self.duration)}"
             )
         if not (math.isfinite(self.command_period) and self.command_period >= 0.0):
             raise InvalidArgumentError(
                 "expected parameter command_period to be seconds >= 0 (0: a step per command); "
-                f"found {self.command_period!r}"
+                f"found {_shown(self.command_period)}"
             )
         if self.command_period and self.mode != "lockstep":
             raise InvalidArgumentError(
                 "expected parameter command_period with mode lockstep (in realtime mode a "
-                f"rospy.Rate on simulated time runs as it is); found mode {self.mode!r}"
+                f"rospy.Rate on simulated time runs as it is); found mode {_shown(self.mode)}"
             )
         if not 0 <= self.seed < 2**64:
-            raise InvalidArgumentError(f"expected parameter seed in [0, 2^64); found {self.seed!r}")
+            raise InvalidArgumentError(
+                f"expected parameter seed in [0, 2^64); found {_shown(self.seed)}"
+            )
 
 
 def _convert(name: str, value: Any, kind: type) -> Any:
@@ -160,7 +163,7 @@ def _convert(name: str, value: Any, kind: type) -> Any:
         return kind(value)
     except (TypeError, ValueError):
         raise InvalidArgumentError(
-            f"expected parameter {name} to be a {kind.__name__}; found {value!r}"
+            f"expected parameter {name} to be a {kind.__name__}; found {_shown(value)}"
         ) from None
 
 
@@ -555,7 +558,7 @@ def refuse_several_robots(world: World) -> None:
     if len(robots) > 1:
         names = ", ".join(str(robot["name"]) for robot in robots)
         raise InvalidArgumentError(
-            f"the ROS 1 bridge simulates one robot; world {world.name!r} holds {len(robots)} "
+            f"the ROS 1 bridge simulates one robot; world {_shown(world.name)} holds {len(robots)} "
             f"({names}): run it with 'mazesim ros2 bridge', which publishes each robot in its "
             "own namespace, or give a world of one robot"
         )
@@ -585,7 +588,7 @@ def run_bridge(
         refuse_several_robots(world)
         if settings.stop_at_goal and world.goal is None:
             raise InvalidArgumentError(
-                f"parameter stop_at_goal is true but world {world.name!r} has no goal"
+                f"parameter stop_at_goal is true but world {_shown(world.name)} has no goal"
             )
         simulator = Simulator(world, robot=settings.robot, seed=settings.seed, noise=settings.noise)
         # Before the bridge listens for commands: a controller that sees it connected finds it.

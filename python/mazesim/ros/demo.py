@@ -30,6 +30,7 @@ from mazesim.errors import (
     InvalidArgumentError,
     MazesimError,
     PolicyFormatError,
+    _shown,
 )
 from mazesim.ros.bridge import refuse_several_robots
 from mazesim.ros.local_master import LocalMaster
@@ -72,7 +73,7 @@ def run_demo(args: argparse.Namespace, out: TextIO) -> int:
     controller = getattr(args, "controller", "hrl")
     if controller not in CONTROLLERS:
         raise InvalidArgumentError(
-            f"expected a controller in {', '.join(CONTROLLERS)}; found {controller!r}"
+            f"expected a controller in {', '.join(CONTROLLERS)}; found {_shown(controller)}"
         )
     hrl = controller == "hrl"
     world = mazesim.load_world(args.world)  # fail early on a bad world
@@ -86,7 +87,7 @@ def run_demo(args: argparse.Namespace, out: TextIO) -> int:
         except PolicyFormatError as error:
             raise InvalidArgumentError(
                 f"{error}; the hrl demo drives with the tables shipped for seed-maze "
-                f"(or run --controller avoid-collision in {world.name!r})"
+                f"(or run --controller avoid-collision in {_shown(world.name)})"
             ) from None
     robot = demo_robot(controller, getattr(args, "robot", None))
     out_dir = os.path.abspath(args.out)

@@ -39,7 +39,7 @@ from typing import Any
 
 import numpy as np
 
-from mazesim.errors import InvalidArgumentError, MazesimError
+from mazesim.errors import InvalidArgumentError, MazesimError, _shown
 from mazesim.ros import topics
 from mazesim.ros._ros import publisher, start_node, subscriber_count, wait_for_subscribers
 
@@ -83,7 +83,7 @@ def control_step_value(name: str, value: Any, allow_zero: bool) -> float:
         number = math.nan
     if math.isnan(number) or (number == 0.0 and not allow_zero):
         wanted = "ms >= 0 (0: the bridge's)" if allow_zero else "ms > 0"
-        raise InvalidArgumentError(f"expected parameter {name} in {wanted}; found {value!r}")
+        raise InvalidArgumentError(f"expected parameter {name} in {wanted}; found {_shown(value)}")
     return number
 
 

@@ -44,7 +44,7 @@ from collections.abc import Callable, Sequence
 from typing import Any
 
 from mazesim._core import RobotProfile, Simulator, sharp_volts_to_cm
-from mazesim.errors import InvalidActionError, InvalidArgumentError, MazesimError
+from mazesim.errors import InvalidActionError, InvalidArgumentError, MazesimError, _shown
 
 __all__ = [
     "ACTION_TOPIC",
@@ -192,8 +192,9 @@ def demo_robot(controller: str, robot: str | None) -> str:
         needs = "the e-puck's 8 raw proximity sensors ps0-ps7, first on sensors"
     if not fits:
         raise InvalidArgumentError(
-            f"the {controller} node needs {needs}; robot {robot!r} ({profile.name}) has "
-            f"{', '.join(names)} in {profile.distance_sensor_unit!r}: give such a profile, or "
+            f"the {controller} node needs {needs}; robot {_shown(robot)} ({profile.name}) has "
+            f"{', '.join(names)} in {_shown(profile.distance_sensor_unit)}: give such a "
+            "profile, or "
             f"leave --robot out ({'seed' if controller == 'hrl' else 'e-puck'})"
         )
     return os.path.abspath(robot) if os.path.exists(robot) else robot

@@ -43,7 +43,7 @@ from typing import Any
 
 from mazesim._core import Simulator
 from mazesim.actions import wheel_speeds
-from mazesim.errors import InvalidActionError, InvalidArgumentError
+from mazesim.errors import InvalidActionError, InvalidArgumentError, _shown
 from mazesim.ros import standard, topics
 from mazesim.ros.lockstep import IDLE_CLOCK_AFTER_S, RESEND_S, TimerHold, UnansweredState
 from mazesim.ros.resets import RESET_SIMULATION, RESETS, EpisodeResets
@@ -114,7 +114,7 @@ class BridgeSettings:
     def validate(self) -> None:
         """Raises :class:`InvalidArgumentError` on a setting the bridge cannot run."""
         if self.mode not in ("lockstep", "free"):
-            raise InvalidArgumentError(f"expected mode lockstep or free; found {self.mode!r}")
+            raise InvalidArgumentError(f"expected mode lockstep or free; found {_shown(self.mode)}")
         if not (math.isfinite(self.speed) and self.speed >= 0.0):
             raise InvalidArgumentError(
                 f"expected a speed >= 0 (0: as fast as possible); found {self.speed}"
@@ -130,7 +130,7 @@ class BridgeSettings:
             raise InvalidArgumentError(
                 "expected a ROS namespace for --namespace (names of letters, digits and _, "
                 "not starting with a digit, joined by /: epuck0, /team/epuck0); found "
-                f"{self.namespace!r}"
+                f"{_shown(self.namespace)}"
             )
 
 
@@ -257,14 +257,14 @@ class Ros2Bridge:
         if settings.namespace and simulator.num_robots > 1:
             raise InvalidArgumentError(
                 "expected a world of one robot for --namespace; found "
-                f"{simulator.num_robots} robots in {simulator.world.name!r}, each in the "
+                f"{simulator.num_robots} robots in {_shown(simulator.world.name)}, each in the "
                 "namespace of its name: leave --namespace out"
             )
         own = "/" + settings.namespace.strip("/") if settings.namespace else ""
         if settings.frame_prefix and simulator.num_robots == 1 and not own:
             raise InvalidArgumentError(
                 "expected a world of several robots for --frame-prefix (each robot's frames "
-                f"start with its name); found one robot in {simulator.world.name!r}, whose "
+                f"start with its name); found one robot in {_shown(simulator.world.name)}, whose "
                 "frames are odom, base_link...: leave --frame-prefix out"
             )
         #: Lockstep: how long each command holds (``--command-period``).
@@ -705,7 +705,7 @@ def run_bridge(settings: BridgeSettings) -> int:
 
     world = mazesim.load_world(settings.world)
     if settings.stop_at_goal and world.goal is None:
-        raise InvalidArgumentError(f"--stop-at-goal: world {world.name!r} has no goal")
+        raise InvalidArgumentError(f"--stop-at-goal: world {_shown(world.name)} has no goal")
     simulator = Simulator(world, robot=settings.robot, seed=settings.seed, noise=settings.noise)
     bridge = Ros2Bridge(simulator, settings)
 

@@ -15,7 +15,7 @@ from __future__ import annotations
 import math
 import time
 
-from mazesim.errors import InvalidActionError
+from mazesim.errors import InvalidActionError, _shown
 from mazesim.ros.lockstep import stamp_nanoseconds
 
 __all__ = ["FreeRunning", "SIM_CONTROL_TOPIC", "stamp_nanoseconds"]
@@ -60,7 +60,7 @@ class FreeRunning:
         except ValueError as error:
             raise InvalidActionError(
                 "expected pause, run, step N (N >= 1) or run_until SECONDS on /sim_control; "
-                f"found {text!r}"
+                f"found {_shown(text)}"
             ) from error
         self.next_step = time.monotonic()
 

@@ -12,7 +12,7 @@ from __future__ import annotations
 import functools
 from typing import Any
 
-from mazesim.errors import InvalidArgumentError
+from mazesim.errors import InvalidArgumentError, _shown
 from mazesim.ros2._deps import require_ros2
 
 __all__ = [
@@ -39,7 +39,7 @@ def check_distro(distro: str) -> str:
     """
     if distro not in DISTROS:
         raise InvalidArgumentError(
-            f"expected a ROS 2 distribution, one of {', '.join(DISTROS)}; found {distro!r}"
+            f"expected a ROS 2 distribution, one of {', '.join(DISTROS)}; found {_shown(distro)}"
         )
     return distro
 
@@ -81,7 +81,7 @@ def _field_type(distro: str, node: tuple[Any, Any]) -> Any:
             return idl.uint8
         if name in _NUMBERS:
             return getattr(idl, name)
-        raise InvalidArgumentError(f"expected a ROS 2 base type; found {name!r}")
+        raise InvalidArgumentError(f"expected a ROS 2 base type; found {_shown(name)}")
     if kind == 2:  # another message
         return idl_type(distro, detail)
     element, size = detail
@@ -101,7 +101,8 @@ def idl_type(distro: str, msgtype: str) -> Any:
     store = typestore(distro)
     if msgtype not in store.fielddefs:
         raise InvalidArgumentError(
-            f"expected a message type of ROS 2 {distro}; found {msgtype!r}, which it does not have"
+            f"expected a message type of ROS 2 {distro}; found {_shown(msgtype)}, which it "
+            "does not have"
         )
     _, fields = store.fielddefs[msgtype]
     annotations = {name: _field_type(distro, node) for name, node in fields}

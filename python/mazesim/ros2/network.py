@@ -15,7 +15,7 @@ import os
 from collections.abc import Mapping
 from typing import NamedTuple
 
-from mazesim.errors import InvalidArgumentError
+from mazesim.errors import InvalidArgumentError, _shown
 
 __all__ = ["LOCALHOST", "SUBNET", "Discovery", "cyclone_config", "discovery_from_environment"]
 
@@ -57,7 +57,8 @@ def discovery_from_environment(
     text = env.get("ROS_DOMAIN_ID", "").strip() or "0"
     if not text.isdigit() or int(text) > MAX_DOMAIN_ID:
         raise InvalidArgumentError(
-            f"expected ROS_DOMAIN_ID to be a whole number from 0 to {MAX_DOMAIN_ID}; found {text!r}"
+            f"expected ROS_DOMAIN_ID to be a whole number from 0 to {MAX_DOMAIN_ID}; found "
+            f"{_shown(text)}"
         )
     reach = LOCALHOST
     automatic = env.get("ROS_AUTOMATIC_DISCOVERY_RANGE", "").strip().upper()
@@ -65,7 +66,7 @@ def discovery_from_environment(
         if automatic not in ("LOCALHOST", "SUBNET", "OFF", "SYSTEM_DEFAULT"):
             raise InvalidArgumentError(
                 "expected ROS_AUTOMATIC_DISCOVERY_RANGE to be LOCALHOST, SUBNET, OFF or "
-                f"SYSTEM_DEFAULT; found {automatic!r}"
+                f"SYSTEM_DEFAULT; found {_shown(automatic)}"
             )
         reach = SUBNET if automatic in ("SUBNET", "SYSTEM_DEFAULT") else LOCALHOST
     elif env.get("ROS_LOCALHOST_ONLY", "").strip() == "0":

@@ -14,7 +14,7 @@ import re
 from collections.abc import Sequence
 
 from mazesim._core import Simulator
-from mazesim.errors import InvalidArgumentError
+from mazesim.errors import InvalidArgumentError, _shown
 from mazesim.webots.shared_world import RobotView
 
 __all__ = ["RobotOf", "robot_namespaces"]
@@ -39,8 +39,9 @@ def robot_namespaces(names: Sequence[str]) -> list[str]:
         if namespace in namespaces:
             other = names[namespaces.index(namespace)]
             raise InvalidArgumentError(
-                f"expected robot names that give distinct ROS namespaces; found {other!r} and "
-                f"{name!r}, both {namespace}: rename one in the world file"
+                "expected robot names that give distinct ROS namespaces; found "
+                f"{_shown(other)} and "
+                f"{_shown(name)}, both {namespace}: rename one in the world file"
             )
         namespaces.append(namespace)
     return namespaces

@@ -22,7 +22,7 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import NamedTuple
 
-from mazesim.errors import InvalidArgumentError
+from mazesim.errors import InvalidArgumentError, _shown
 
 __all__ = ["RosArguments", "split_ros_arguments"]
 
@@ -68,7 +68,7 @@ def _rule(text: str, flag: str) -> tuple[str, str, str]:
     if not sep or not source_name or not target:
         raise InvalidArgumentError(
             f"expected a remapping FROM:=TO (or NODE:FROM:=TO) after {flag} in --ros-args; "
-            f"found {text!r}"
+            f"found {_shown(text)}"
         )
     return (node if colon else "", source_name, target)
 
@@ -79,7 +79,7 @@ def _parameters_in_file(path: str) -> list[str]:
         lines = Path(path).read_text(encoding="utf-8").splitlines()
     except (OSError, UnicodeDecodeError) as e:
         raise InvalidArgumentError(
-            f"expected a readable ROS 2 parameters file after --params-file; found {path!r} "
+            f"expected a readable ROS 2 parameters file after --params-file; found {_shown(path)} "
             f"({e.__class__.__name__})"
         ) from None
     names: list[str] = []
@@ -104,7 +104,7 @@ def _check_parameter(name: str, where: str) -> None:
         raise InvalidArgumentError(
             f"expected no ROS parameter other than use_sim_time ({where}): mazesim's ROS 2 "
             f"nodes have none, their settings are their options (perhaps {option}); found "
-            f"{name!r}"
+            f"{_shown(name)}"
         )
 
 
@@ -156,7 +156,8 @@ def split_ros_arguments(arguments: Sequence[str]) -> tuple[list[str], RosArgumen
                         node_name = target
                 elif not (_NAME.fullmatch(source) and _NAME.fullmatch(target)):
                     raise InvalidArgumentError(
-                        f"expected ROS topic names in the remapping after {item}; found {value!r}"
+                        f"expected ROS topic names in the remapping after {item}; found "
+                        f"{_shown(value)}"
                     )
                 else:
                     rules.append((node, source, target))
@@ -164,7 +165,7 @@ def split_ros_arguments(arguments: Sequence[str]) -> tuple[list[str], RosArgumen
                 name, sep, _ = value.partition(":=")
                 if not sep:
                     raise InvalidArgumentError(
-                        f"expected NAME:=VALUE after {item} in --ros-args; found {value!r}"
+                        f"expected NAME:=VALUE after {item} in --ros-args; found {_shown(value)}"
                     )
                 _check_parameter(name.rpartition(":")[2], f"{item} {value}")
             elif item == "--params-file":
@@ -175,6 +176,6 @@ def split_ros_arguments(arguments: Sequence[str]) -> tuple[list[str], RosArgumen
         raise InvalidArgumentError(
             "expected ROS 2 arguments after --ros-args (-r FROM:=TO, -r __ns:=/NAMESPACE, "
             "-r __node:=NAME, -p use_sim_time:=true, --params-file FILE, --log-level LEVEL, "
-            f"ending at --); found {item!r}"
+            f"ending at --); found {_shown(item)}"
         )
     return rest, RosArguments(namespace, node_name, tuple(rules))

@@ -42,7 +42,7 @@ from dataclasses import dataclass, field
 from typing import Any, Union
 
 from mazesim.barcode.link import LINKS
-from mazesim.errors import InvalidArgumentError, UnknownNameError
+from mazesim.errors import InvalidArgumentError, UnknownNameError, _shown
 
 __all__ = [
     "AXES",
@@ -95,14 +95,17 @@ class Axis:
         if self.names:
             if not isinstance(level, str) or level not in self.names:
                 raise InvalidArgumentError(
-                    f"axis {self.name!r}: expected one of {', '.join(self.names)}, found {level!r}"
+                    f"axis {_shown(self.name)}: expected one of {', '.join(self.names)}, found "
+                    f"{_shown(level)}"
                 )
             return level
         if isinstance(level, str) or not math.isfinite(level):
-            raise InvalidArgumentError(f"axis {self.name!r}: expected a number, found {level!r}")
+            raise InvalidArgumentError(
+                f"axis {_shown(self.name)}: expected a number, found {_shown(level)}"
+            )
         if not self.low <= level <= self.high:
             raise InvalidArgumentError(
-                f"axis {self.name!r}: expected a level in [{self.low:g}, {self.high:g}] "
+                f"axis {_shown(self.name)}: expected a level in [{self.low:g}, {self.high:g}] "
                 f"{self.unit}".rstrip()
                 + f", found {level:g}"
             )
@@ -167,7 +170,7 @@ def axis_named(name: str) -> Axis:
         if axis.name == name:
             return axis
     raise UnknownNameError(
-        f"no transfer axis named {name!r}; axes: {', '.join(AXIS_NAMES)}",
+        f"no transfer axis named {_shown(name)}; axes: {', '.join(AXIS_NAMES)}",
         available=list(AXIS_NAMES),
         name=name,
     )

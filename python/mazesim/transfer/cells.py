@@ -34,7 +34,7 @@ from mazesim.episodes import (
     run_episodes,
     shortest_path_steps,
 )
-from mazesim.errors import InvalidArgumentError
+from mazesim.errors import InvalidArgumentError, _shown
 from mazesim.learn.higher import HigherLevel
 from mazesim.learn.policy import HierarchicalPolicy
 from mazesim.learn.summary import Summary, summarise
@@ -98,7 +98,8 @@ def profile_of(setting: Setting) -> RobotProfile:
     perturbed = getattr(base, "perturbed", None)
     if perturbed is None:
         raise InvalidArgumentError(
-            f"the setting {setting.label()!r} needs RobotProfile.perturbed, which this build of "
+            f"the setting {_shown(setting.label())} needs RobotProfile.perturbed, which this "
+            "build of "
             "mazesim lacks; study the axes robot, latency and link only"
         )
     drive = DrivePerturbation(**{k: v for k, v in changes.items() if k in _DRIVE_CHANGES})

@@ -42,7 +42,7 @@ from mazesim._paths import read_text
 from mazesim._seeding import stream
 from mazesim._toml import load_toml
 from mazesim.batch import RobotChoice
-from mazesim.errors import InvalidArgumentError, UnknownNameError
+from mazesim.errors import InvalidArgumentError, UnknownNameError, _shown
 from mazesim.learn.fleet import Fleet, ReadingsMap
 from mazesim.transfer.axes import AXIS_NAMES, Setting, axis_named
 from mazesim.transfer.cells import SEED_ROBOT, profile_of
@@ -73,13 +73,13 @@ def _robot_names(value: Any, where: str) -> tuple[str, ...]:
     if not names or not all(isinstance(name, str) for name in names):
         raise InvalidArgumentError(
             f"{where}: robot: expected a list of robot profile names ({', '.join(valid)}), "
-            f"found {value!r}"
+            f"found {_shown(value)}"
         )
     for name in names:
         if name not in valid:
             raise UnknownNameError(
                 f"{where}: robot: expected a robot profile named one of {', '.join(valid)}, "
-                f"found {name!r}",
+                f"found {_shown(name)}",
                 available=list(valid),
                 name=name,
             )
@@ -94,13 +94,13 @@ def _checked_range(name: str, pair: Any, where: str) -> tuple[float, float]:
         isinstance(n, (int, float)) and not isinstance(n, bool) for n in numbers
     ):
         raise InvalidArgumentError(
-            f"{where}: {name}: expected a range of two numbers [low, high], found {pair!r}"
+            f"{where}: {name}: expected a range of two numbers [low, high], found {_shown(pair)}"
         )
     try:
         low, high = (float(axis.check(float(n))) for n in numbers)
     except OverflowError:  # a whole number too large for a float
         raise InvalidArgumentError(
-            f"{where}: {name}: expected a range of two finite numbers, found {pair!r}"[:300]
+            f"{where}: {name}: expected a range of two finite numbers, found {_shown(pair)}"[:300]
         ) from None
     if low > high:
         raise InvalidArgumentError(
@@ -143,7 +143,8 @@ class RandomisationSpec:
                 continue
             if name not in RANDOMISED_AXES:
                 raise InvalidArgumentError(
-                    f"{where}: axis {name!r} is not a property of the robot profile; expected "
+                    f"{where}: axis {_shown(name)} is not a property of the robot profile; "
+                    "expected "
                     f"one of {', '.join(RANDOMISED_AXES)}"
                 )
             several = isinstance(pair, (list, tuple)) and all(
@@ -182,7 +183,8 @@ def _inline(text: str) -> dict[str, Any]:
         name, equals, bounds = (piece.strip() for piece in part.partition("="))
         if name in ranges:
             raise InvalidArgumentError(
-                f"randomisation: expected each axis once, found {name!r} twice in {text!r}"
+                f"randomisation: expected each axis once, found {_shown(name)} twice in "
+                f"{_shown(text)}"
             )
         if name == ROBOT_AXIS and equals:
             ranges[name] = [robot.strip() for robot in bounds.split("|")]
@@ -196,8 +198,9 @@ def _inline(text: str) -> dict[str, Any]:
                 values = []
             if not equals or not colon or not all(math.isfinite(v) for v in values) or not values:
                 raise InvalidArgumentError(
-                    f"randomisation: expected a TOML file or axis=low:high, found {part!r} in "
-                    f"{text!r}"
+                    "randomisation: expected a TOML file or axis=low:high, found "
+                    f"{_shown(part)} in "
+                    f"{_shown(text)}"
                 )
             spans.append(values)
         ranges[name] = spans[0] if len(spans) == 1 else spans

@@ -18,7 +18,7 @@ from dataclasses import dataclass
 
 from mazesim._core import World
 from mazesim.episodes import EVENT_SOURCES
-from mazesim.errors import InvalidArgumentError
+from mazesim.errors import InvalidArgumentError, _shown
 from mazesim.learn.evaluate import navigator_for
 from mazesim.learn.tables import TrainedPolicy
 from mazesim.transfer.axes import AXES, Axis, Level, Setting
@@ -73,12 +73,13 @@ class StudyOptions:
             )
         if self.events not in EVENT_SOURCES:
             raise InvalidArgumentError(
-                f"expected events from one of {', '.join(EVENT_SOURCES)}, found {self.events!r}"
+                f"expected events from one of {', '.join(EVENT_SOURCES)}, found "
+                f"{_shown(self.events)}"
             )
         if self.odometry not in ODOMETRY_SOURCES:
             raise InvalidArgumentError(
                 f"expected odometry from one of {', '.join(ODOMETRY_SOURCES)}, found "
-                f"{self.odometry!r}"
+                f"{_shown(self.odometry)}"
             )
 
 

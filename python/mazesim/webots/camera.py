@@ -28,7 +28,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 import numpy.typing as npt
 
-from mazesim.errors import InvalidArgumentError, WrongTypeError
+from mazesim.errors import InvalidArgumentError, WrongTypeError, _shown
 from mazesim.webots.devices import _print_error, _Sensor, sampling_period, webots_property
 from mazesim.webots.frames import Axes, axes_or_none, camera_heading
 from mazesim.webots.node_types import node_type
@@ -1010,7 +1010,8 @@ def _pixel(name: str, image: Any, width: Any, x: Any, y: Any) -> int:
     for label, value in (("width", width), ("x", x), ("y", y)):
         if type(value) is not int and (isinstance(value, bool) or not isinstance(value, Integral)):
             raise WrongTypeError(
-                f"Camera.{name}: expected {label} as an int, found {type(value).__name__} {value!r}"
+                f"Camera.{name}: expected {label} as an int, found {type(value).__name__} "
+                f"{_shown(value)}"
             )
     if not isinstance(image, _IMAGE_TYPES):
         raise WrongTypeError(

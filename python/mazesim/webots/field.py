@@ -25,6 +25,7 @@ from mazesim.errors import (
     MazesimIOError,
     WrongTypeError,
     _a_type,
+    _shown,
 )
 from mazesim.webots import simulation as _simulations
 from mazesim.webots.devices import _print_error, webots_property
@@ -494,7 +495,8 @@ def field_value(value: Any, count: int, function: str) -> Any:
         numbers = [_field_number(value, where, integer=count == 0)]
         if count == 0 and not -(2**31) <= numbers[0] < 2**31:
             raise InvalidArgumentError(
-                f"{where}: expected {_KINDS[0]}, found {value!r}; give a value that fits 32 bits"
+                f"{where}: expected {_KINDS[0]}, found {_shown(value)}; give a value that fits "
+                "32 bits"
             )
         return numbers
     if not isinstance(value, (list, tuple)):
@@ -515,13 +517,13 @@ def _field_number(value: Any, where: str, integer: bool) -> Any:
         raise WrongTypeError(f"{where}: expected {kind}, found {_a_type(value)}")
     if integer:
         if not float(value).is_integer():
-            raise InvalidArgumentError(f"{where}: expected {kind}, found {value!r}")
+            raise InvalidArgumentError(f"{where}: expected {kind}, found {_shown(value)}")
         return int(value)
     number = float(value)
     if not math.isfinite(number) or abs(number) > LARGEST_FIELD_NUMBER:
         raise InvalidArgumentError(
             f"{where}: expected finite numbers of at most {LARGEST_FIELD_NUMBER:g} in "
-            f"magnitude, found {value!r}"
+            f"magnitude, found {_shown(value)}"
         )
     return number
 

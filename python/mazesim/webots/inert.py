@@ -19,6 +19,7 @@ from collections.abc import Callable
 from types import SimpleNamespace
 from typing import TYPE_CHECKING, Any
 
+from mazesim.errors import _shown
 from mazesim.webots.devices import Device, _ScalarSensor
 from mazesim.webots.node_types import node_type
 
@@ -54,7 +55,9 @@ class NotSimulated:
 
     def __getattr__(self, name: str) -> Callable[..., None]:
         if not name[:1].islower() or "_" in name:
-            raise AttributeError(f"{type(self).__name__!r} object has no attribute {name!r}")
+            raise AttributeError(
+                f"{_shown(type(self).__name__)} object has no attribute {_shown(name)}"
+            )
         owner = type(self).__name__
 
         def not_simulated(*args: Any, **kwargs: Any) -> None:

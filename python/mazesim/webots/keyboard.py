@@ -19,7 +19,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, NamedTuple
 
 from mazesim._paths import read_text
-from mazesim.errors import InvalidArgumentError
+from mazesim.errors import InvalidArgumentError, _shown
 from mazesim.webots.devices import Sampled, webots_property
 
 if TYPE_CHECKING:
@@ -73,7 +73,7 @@ def key_code(text: str) -> int:
         bit = MODIFIERS.get(modifier.upper())
         if bit is None:
             raise InvalidArgumentError(
-                f"expected a modifier SHIFT, CONTROL or ALT before '+', found {modifier!r}"
+                f"expected a modifier SHIFT, CONTROL or ALT before '+', found {_shown(modifier)}"
             )
         code |= bit
     if len(key) == 1:
@@ -81,7 +81,8 @@ def key_code(text: str) -> int:
     named = KEY_CODES.get(key.upper())
     if named is None:
         raise InvalidArgumentError(
-            f"expected one character or a key name ({', '.join(sorted(KEY_CODES))}), found {key!r}"
+            f"expected one character or a key name ({', '.join(sorted(KEY_CODES))}), found "
+            f"{_shown(key)}"
         )
     return code | named
 
@@ -109,7 +110,7 @@ class KeyScript:
             where = f"{source}:{number}"
             if len(words) not in (2, 3):
                 raise InvalidArgumentError(
-                    f"{where}: expected 'time_s key [duration_s]', found {line.strip()!r}"
+                    f"{where}: expected 'time_s key [duration_s]', found {_shown(line.strip())}"
                 )
             start = _seconds(words[0], where, "time")
             try:
@@ -141,7 +142,9 @@ def _seconds(word: str, where: str, what: str) -> float:
     except ValueError:
         value = math.nan
     if not (math.isfinite(value) and value >= 0.0):
-        raise InvalidArgumentError(f"{where}: expected a {what} in seconds >= 0, found {word!r}")
+        raise InvalidArgumentError(
+            f"{where}: expected a {what} in seconds >= 0, found {_shown(word)}"
+        )
     return value
 
 

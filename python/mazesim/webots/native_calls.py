@@ -29,7 +29,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
-from mazesim.errors import MazesimIOError
+from mazesim.errors import MazesimIOError, _shown
 from mazesim.webots.camera import CameraRecognitionObject
 from mazesim.webots.devices import _print_error
 from mazesim.webots.field import Field
@@ -331,7 +331,7 @@ class NativeCalls:
         function = FUNCTIONS.get(name)
         if function is None:
             raise MazesimIOError(
-                f"expected a call of a Webots function mazesim serves, found {name!r}"
+                f"expected a call of a Webots function mazesim serves, found {_shown(name)}"
             )
         values = list(values)
         first = values.pop(0) if function.target in ("device", "node", "field") and values else 0

@@ -27,7 +27,7 @@ from collections import deque
 from collections.abc import Mapping, Sequence
 from typing import TYPE_CHECKING, Any
 
-from mazesim.errors import InvalidArgumentError, WrongTypeError, _a_type
+from mazesim.errors import InvalidArgumentError, WrongTypeError, _a_type, _shown
 from mazesim.webots.devices import Device, _print_error, _Sensor, webots_property
 from mazesim.webots.frames import ENU_TO_NUE, Axes, axes_or_none
 from mazesim.webots.inert import NotSimulated
@@ -76,7 +76,7 @@ def _packet_bytes(message: Any, length: int | None, most: int) -> bytes:
         or not math.isfinite(length)
     ):
         raise InvalidArgumentError(
-            f"Emitter.send: length refused: expected a number of bytes, found {length!r}"
+            f"Emitter.send: length refused: expected a number of bytes, found {_shown(length)}"
         )
     sized = message if isinstance(message, (str, bytes, bytearray, memoryview)) else None
     try:

@@ -10,7 +10,7 @@ import time
 import warnings
 from typing import Any, ClassVar
 
-from mazesim.errors import InvalidArgumentError, _shortened
+from mazesim.errors import InvalidArgumentError, _shortened, _shown
 from mazesim.webots import simulation as _simulations
 from mazesim.webots.devices import MAX_SAMPLING_PERIOD_MS, sampling_period, webots_property
 from mazesim.webots.equipment import Equipment
@@ -313,7 +313,7 @@ class Robot(NotSimulated):
         if not (math.isfinite(duration) and 0.0 <= duration <= MAX_SAMPLING_PERIOD_MS):
             raise InvalidArgumentError(
                 f"Robot.step expects a duration in ms from 0 to {MAX_SAMPLING_PERIOD_MS} "
-                f"(Webots' C int), found {duration!r}"
+                f"(Webots' C int), found {_shown(duration)}"
             )
         if simulation.ended:
             ended_at = simulation.ended_at if simulation.ended_at is not None else 0.0

@@ -28,7 +28,7 @@ import numpy as np
 
 from mazesim._core import World
 from mazesim._toml import dump_toml, load_toml
-from mazesim.errors import MazesimError
+from mazesim.errors import MazesimError, _shown
 from mazesim.webots.proto_fields import robot_label
 from mazesim.webots.shared_world import RobotView, with_robots_of
 
@@ -138,7 +138,8 @@ def robot_change(
         if any(robots[i].get("profile") is not None for i in running.values()):
             label = robot_label(added[0])
             raise MazesimError(
-                f"expected a world whose e-pucks share one simulator to import robot {label!r} "
+                "expected a world whose e-pucks share one simulator to import robot "
+                f"{_shown(label)} "
                 "into, found e-pucks in simulators of their own"
             )
         return _first_e_pucks(world, len(robots), added, removed)

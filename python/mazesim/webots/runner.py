@@ -23,7 +23,7 @@ from typing import Any
 from mazesim._callers import users_code
 from mazesim._core import RobotProfile, World
 from mazesim._paths import MAX_TEXT_CHARACTERS, read_input
-from mazesim.errors import InvalidArgumentError, MazesimError, MazesimIOError
+from mazesim.errors import InvalidArgumentError, MazesimError, MazesimIOError, _shown
 from mazesim.webots import controller as controller_module
 from mazesim.webots import native_controller, termination
 from mazesim.webots import simulation as simulations
@@ -256,7 +256,8 @@ def run_controller(
     """
     if not (isinstance(stall_seconds, (int, float)) and 0.0 < stall_seconds <= 1e9):
         raise InvalidArgumentError(
-            f"expected stall_seconds to be a number of seconds in (0, 1e9], found {stall_seconds!r}"
+            "expected stall_seconds to be a number of seconds in (0, 1e9], found "
+            f"{_shown(stall_seconds)}"
         )
     file = controller_file(path)
     if prepared is None or prepared.file != file:

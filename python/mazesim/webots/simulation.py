@@ -19,7 +19,7 @@ import numpy as np
 import numpy.typing as npt
 
 from mazesim._core import RobotProfile, Simulator, World
-from mazesim.errors import InvalidArgumentError, UnknownNameError
+from mazesim.errors import InvalidArgumentError, UnknownNameError, _shown
 from mazesim.webots.keyboard import KeyScript
 from mazesim.webots.own_sensors import OwnSensors, own_sensors
 from mazesim.webots.radio import Radio
@@ -186,7 +186,9 @@ class RobotSimulation:
             InvalidArgumentError: ``seconds`` is not a positive number.
         """
         if seconds is not None and not (math.isfinite(seconds) and seconds > 0.0):
-            raise InvalidArgumentError(f"expected a positive number of seconds, found {seconds!r}")
+            raise InvalidArgumentError(
+                f"expected a positive number of seconds, found {_shown(seconds)}"
+            )
         self.world = world
         self.report: dict[str, Any] = dict(report or {})
         self.keys = keys if keys is not None else KeyScript([])

@@ -27,7 +27,7 @@ from __future__ import annotations
 import sys
 from types import ModuleType
 
-from mazesim.errors import UnknownNameError
+from mazesim.errors import UnknownNameError, _shown
 from mazesim.webots.camera import Camera, CameraRecognitionObject
 from mazesim.webots.devices import LED, Device, DistanceSensor, Motor, PositionSensor, _Sensor
 from mazesim.webots.field import Field
@@ -186,4 +186,4 @@ def __getattr__(name: str) -> object:
             "0.00628 rad/s: setVelocity(0.00628 * speed)), and the encoders 'left wheel "
             "sensor' and 'right wheel sensor' in radians"
         )
-    raise AttributeError(f"module 'controller' has no attribute {name!r}")
+    raise AttributeError(f"module 'controller' has no attribute {_shown(name)}")

@@ -17,7 +17,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from mazesim._paths import read_input
-from mazesim.errors import InvalidArgumentError
+from mazesim.errors import InvalidArgumentError, _shown
 
 from .syntax import located_error
 from .template_modules import JAVASCRIPT_MODULES, LUA_MODULES
@@ -342,7 +342,7 @@ def evaluate_template(
     if language not in ("javascript", "lua"):
         raise InvalidArgumentError(
             f"evaluate_template: expected the language 'javascript' or 'lua' of {origin}, "
-            f"found {language!r}"
+            f"found {_shown(language)}"
         )
     body = without_comments(body)
     if language == "javascript":
