@@ -204,6 +204,7 @@ def samples(tmp: Path) -> dict[str, Any]:
         "overrides": {
             "observe_env": {"readings": np.zeros(11, np.float32), "pose": np.zeros(3, np.float32)},
             "run": {"controller": core.TabularSettings(np.zeros((4096, 12)))},
+            "sharp_distances": {"readings": np.full(6, 1.0), "in_cm": False},
             "train_lower_round": lower_round_samples(world, x, y, yaw, batch),
             "LowerRoundSettings": lower_round_samples(world, x, y, yaw, batch),
             "set_subtask_arrays": {"subtasks": navigator.subtask_arrays()},

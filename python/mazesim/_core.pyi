@@ -35,6 +35,7 @@ __all__ = [
     "lower_level_states",
     "q_batch_update",
     "robot_profile_names",
+    "sharp_distances",
     "sharp_volts_to_cm",
     "train_lower_round",
     "validate_codes",
@@ -101,6 +102,15 @@ def lower_level_states(observations: npt.NDArray[np.float32]) -> npt.NDArray[np.
     of each row of an (N, W >= 6) float32 array: what ``BatchSimulator.run``'s tabular
     controller acts on (``mazesim.learn.discretise.observation_states`` calls it). A reading below
     0 V is refused with :class:`~mazesim.InvalidArgumentError`."""
+
+def sharp_distances(
+    readings: npt.NDArray[np.float64], in_cm: bool = False
+) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.int64]]:
+    """The distances in cm and the Table 4.1 levels of an (N,) float64 array of Sharp readings
+    in volts (or, with ``in_cm``, of distances in cm), by the core's discretiser
+    (``mazesim.learn.discretise.distances_and_levels`` calls it). A reading below 0 V, infinite
+    or not a number (a distance below 0 cm or not a number) is refused with
+    :class:`~mazesim.InvalidArgumentError`."""
 
 def _panic_for_tests(message: str, on_helper_thread: bool = False) -> None:
     """Panics inside the core (only the tests of the panic guard call it)."""

@@ -9,10 +9,12 @@ import mazesim
 from mazesim.actions import ACTION_CODES, WHEEL_SPEED_FRACTIONS, wheel_speeds
 from mazesim.errors import InvalidArgumentError
 from mazesim.learn.discretise import (
+    LEVEL_EDGES_CM,
     NUM_STATES,
     SENSOR_ORDER,
     decode_state,
     distance_levels,
+    distances_and_levels,
     encode_state,
     observation_states,
     volts_to_cm,
@@ -64,6 +66,19 @@ def test_volts_to_cm_equals_the_core_inversion_bit_for_bit() -> None:
     assert np.array_equal(volts_to_cm(volts), core)
 
 
+def test_distances_and_levels_are_the_core_steps_state_in_cm_and_levels() -> None:
+    """One call gives the distances ``volts_to_cm`` gives and the levels Table 4.1 puts them at,
+    each of the readings' shape, and the levels are those of the state the core's tabular
+    controller acts on."""
+    volts = np.random.default_rng(5).uniform(0.0, 3.5, (400, 6)).astype(np.float32)
+    distances, levels = distances_and_levels(volts)
+    assert distances.shape == levels.shape == (400, 6)
+    assert np.array_equal(distances, volts_to_cm(volts))
+    assert np.array_equal(levels, np.searchsorted(LEVEL_EDGES_CM, distances, side="right"))
+    assert np.array_equal(encode_state(levels), observation_states(volts))
+    assert set(np.unique(levels).tolist()) == {0, 1, 2, 3}
+
+
 @pytest.mark.parametrize("reading", [np.nan, np.inf, -np.inf, -0.5])
 def test_the_vector_discretisers_refuse_what_the_scalar_one_refuses(
     reading: float,
@@ -74,7 +89,7 @@ def test_the_vector_discretisers_refuse_what_the_scalar_one_refuses(
         mazesim.sharp_volts_to_cm(reading)
     rows = np.full((3, 6), 1.0)
     rows[1, 2] = reading
-    for discretise in (volts_to_cm, observation_states):
+    for discretise in (volts_to_cm, distances_and_levels, observation_states):
         with pytest.raises(InvalidArgumentError, match="readings of 0 V or more, finite") as caught:
             discretise(rows)
         assert f"found {reading} V" in str(caught.value)

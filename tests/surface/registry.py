@@ -242,6 +242,10 @@ MUST_REFUSE: dict[str, tuple[MustRefuse, ...]] = {
     "mazesim._core:lower_level_states": (
         MustRefuse({}, {"observations": ("nan_observations", "inf_observations")}),
     ),
+    "mazesim._core:sharp_distances": (MustRefuse({}, {"readings": ("nan_array",)}),),
+    "mazesim.learn.discretise:distances_and_levels": (
+        MustRefuse({}, {"volts": ("nan", "inf", "nan_array", "nan_observations")}),
+    ),
     "mazesim.learn.discretise:volts_to_cm": (
         MustRefuse({}, {"volts": ("nan", "inf", "nan_array", "nan_observations")}),
     ),

@@ -108,6 +108,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(wbt::import_wbt_text, m)?)?;
     m.add_function(wrap_pyfunction!(guard::_panic_for_tests, m)?)?;
     m.add_function(wrap_pyfunction!(run::lower_level_states, m)?)?;
+    m.add_function(wrap_pyfunction!(run::sharp_distances, m)?)?;
     m.add_function(wrap_pyfunction!(lower::q_batch_update, m)?)?;
     m.add_function(wrap_pyfunction!(lower::train_lower_round, m)?)?;
     m.add_class::<batch::PyBatch>()?;

@@ -330,24 +330,11 @@ pub fn lower_level_states<'py>(
             }
         };
         let values = copied::<f32>(observations, "observations", "float32", &[rows, width])?;
-        // The Sharp ranger never reads below 0 V, nor an infinite or NaN voltage: refused as
-        // `learn.volts_to_cm` refuses it, quoting the same reading.
-        let refused = values
+        let sensors_read = values
             .chunks_exact(width)
             .flat_map(|row| &row[..sensors])
-            .copied()
-            .filter(|&v| !(0.0..f32::INFINITY).contains(&v))
-            .fold(None, |quoted: Option<f32>, v| match quoted {
-                Some(q) if q.is_nan() || q <= v => Some(q),
-                _ => Some(v),
-            });
-        if let Some(reading) = refused {
-            return Err(invalid(format!(
-                "expected Sharp GP2Y0A41SK0F readings of 0 V or more, finite (its output never \
-                 goes below 0 V, as mazesim.sharp_volts_to_cm says), found {} V",
-                shown_volts(reading)
-            )));
-        }
+            .map(|&v| f64::from(v));
+        refuse_readings(sensors_read, false)?;
         let discretiser = Discretiser::new().py()?;
         let states: Vec<i64> = values
             .chunks_exact(width)
@@ -357,10 +344,76 @@ pub fn lower_level_states<'py>(
     })
 }
 
+/// The distances in cm and the levels `sharp_distances` returns.
+type DistancesAndLevels<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<i64>>);
+
+/// The distances in cm and the Table 4.1 levels of `readings`, a 1-D float64 array of Sharp
+/// readings in volts (or, with `in_cm`, of distances in cm), by the core's discretiser: the one
+/// home of `mazesim.learn.discretise.volts_to_cm` and `distance_levels`.
+#[pyfunction]
+#[pyo3(
+    signature = (readings, in_cm=Flag::Value(false)),
+    text_signature = "(readings, in_cm=False)"
+)]
+pub fn sharp_distances<'py>(
+    py: Python<'py>,
+    readings: &Bound<'py, PyAny>,
+    in_cm: Flag,
+) -> PyResult<DistancesAndLevels<'py>> {
+    enter(|| {
+        let in_cm = in_cm.value("in_cm", "a bool")?;
+        let n = match shape_of(readings).unwrap_or_default()[..] {
+            [n] => n,
+            ref shape => {
+                return Err(shape_refusal(
+                    readings,
+                    format!("expected readings of shape (N,), found shape {shape:?}"),
+                ))
+            }
+        };
+        let values = copied::<f64>(readings, "readings", "float64", &[n])?;
+        refuse_readings(values.iter().copied(), in_cm)?;
+        let cm: Vec<f64> = if in_cm {
+            values
+        } else {
+            let discretiser = Discretiser::new().py()?;
+            values.iter().map(|&v| discretiser.cm(v)).collect()
+        };
+        let levels = cm
+            .iter()
+            .map(|&d| navigator::discretiser::level_of_cm(d) as i64)
+            .collect();
+        Ok((PyArray1::from_vec(py, cm), PyArray1::from_vec(py, levels)))
+    })
+}
+
+/// Refuses Sharp readings in volts below 0 V, infinite or not a number (the ranger reads none of
+/// them), or distances in cm below 0 cm or not a number, quoting the one a refusal names: not a
+/// number if one is, else the lowest.
+fn refuse_readings(values: impl Iterator<Item = f64>, in_cm: bool) -> PyResult<()> {
+    let refused = values
+        .filter(|&v| !(v >= 0.0 && (in_cm || v < f64::INFINITY)))
+        .fold(None, |quoted: Option<f64>, v| match quoted {
+            Some(q) if q.is_nan() || q <= v => Some(q),
+            _ => Some(v),
+        });
+    let Some(reading) = refused else {
+        return Ok(());
+    };
+    let found = shown_volts(reading);
+    Err(invalid(if in_cm {
+        format!("expected distances of 0 cm or more (an infinite one is level 3), found {found} cm")
+    } else {
+        format!(
+            "expected Sharp GP2Y0A41SK0F readings of 0 V or more, finite (its output never goes \
+             below 0 V, as mazesim.sharp_volts_to_cm says), found {found} V"
+        )
+    }))
+}
+
 /// A refused reading as Python prints the float (`nan`, `inf`, `-0.5`), so that the core's
 /// refusal quotes it as `learn.volts_to_cm`'s does.
-fn shown_volts(reading: f32) -> String {
-    let value = f64::from(reading);
+fn shown_volts(value: f64) -> String {
     if value.is_nan() {
         "nan".to_owned()
     } else if value.is_infinite() {

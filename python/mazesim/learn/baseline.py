@@ -30,7 +30,7 @@ from mazesim._seeding import stream
 from mazesim.actions import ACTION_CODES
 from mazesim.episodes import MAX_STEPS, EpisodeBatch
 from mazesim.learn import qlearning
-from mazesim.learn.discretise import NUM_SENSORS, NUM_STATES, distance_levels, volts_to_cm
+from mazesim.learn.discretise import NUM_SENSORS, NUM_STATES, distances_and_levels
 from mazesim.learn.policy import StepRecord
 from mazesim.maze import checkpoint_ids
 
@@ -117,8 +117,8 @@ class FlatNavigator:
     def states(self, observations: npt.ArrayLike, events: npt.ArrayLike) -> npt.NDArray[np.int64]:
         """Notes the events and returns each robot's state."""
         rows = np.asarray(observations)
-        distances = volts_to_cm(rows[:, :NUM_SENSORS])
-        states = self.states_from_levels(distance_levels(distances), events)
+        distances, levels = distances_and_levels(rows[:, :NUM_SENSORS])
+        states = self.states_from_levels(levels, events)
         self.record.distances_cm = distances
         return states
 

@@ -36,7 +36,7 @@ from mazesim._core import EpisodeLimits, RunSettings, TabularSettings
 from mazesim.actions import ACTION_CODES
 from mazesim.episodes import EpisodeBatch, EpisodeResult, EpisodeSchedule, Watcher
 from mazesim.errors import InvalidArgumentError, _shown
-from mazesim.learn.discretise import NUM_SENSORS, NUM_STATES, distance_levels, volts_to_cm
+from mazesim.learn.discretise import NUM_SENSORS, NUM_STATES, distances_and_levels
 from mazesim.learn.policy import HierarchicalPolicy, StepRecord
 from mazesim.learn.subtasks import NUM_SUBTASKS, SUBTASK_ACTIONS
 
@@ -169,8 +169,7 @@ def _record_of(
     """The navigator's record of step ``step`` (> 0) of a call, from its trace and the
     observations it acted on."""
     record = StepRecord(observations.shape[0])
-    record.distances_cm = volts_to_cm(observations[:, :NUM_SENSORS])
-    record.levels = distance_levels(record.distances_cm)
+    record.distances_cm, record.levels = distances_and_levels(observations[:, :NUM_SENSORS])
     record.state = record.levels @ _PLACE
     record.subtask = trace["subtasks"][step].astype(np.int64)
     record.phase = trace["phases"][step].astype(np.int64)

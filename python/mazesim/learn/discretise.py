@@ -2,8 +2,9 @@
 
 The ``seed`` robot reads six Sharp GP2Y0A41SK0F sensors in volts, in the report's order
 (:data:`SENSOR_ORDER`: front, back, left, right, left-front, right-front). Each reading is
-turned back into a distance in cm by inverting the sensor's table (:func:`volts_to_cm`, the same
-arithmetic as :func:`mazesim.sharp_volts_to_cm`, vectorised), then into a level by Table 4.1:
+turned back into a distance in cm by inverting the sensor's table (:func:`volts_to_cm`, the
+arithmetic of :func:`mazesim.sharp_volts_to_cm`), then into a level by Table 4.1, both by the
+core's discretiser (:func:`distances_and_levels` gives the two at once):
 
 =====================  =====
 distance d (cm)        level
@@ -32,8 +33,6 @@ Example:
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 import numpy.typing as npt
 
@@ -48,6 +47,7 @@ __all__ = [
     "SHARP_TABLE",
     "decode_state",
     "distance_levels",
+    "distances_and_levels",
     "encode_state",
     "format_levels",
     "observation_states",
@@ -88,17 +88,15 @@ SHARP_TABLE: tuple[tuple[float, float], ...] = (
     (0.35, 0.37),
     (0.40, 0.31),
 )
-_TABLE_METRES = np.array([row[0] for row in SHARP_TABLE], dtype=np.float64)
-_TABLE_VOLTS = np.array([row[1] for row in SHARP_TABLE], dtype=np.float64)
 _PLACE_VALUES = NUM_LEVELS ** np.arange(NUM_SENSORS, dtype=np.int64)
 
 
 def volts_to_cm(volts: npt.ArrayLike) -> npt.NDArray[np.float64]:
     """Converts Sharp readings in volts to distances in cm, element by element.
 
-    The table is inverted piecewise linearly and clamped: 3.03 V or more reads 3 cm, 0.31 V or
-    less reads 40 cm. The arithmetic is that of :func:`mazesim.sharp_volts_to_cm`, so the results
-    are equal to it bit for bit.
+    The ``seed`` robot's table is inverted piecewise linearly and clamped: 3.03 V or more reads
+    3 cm, 0.31 V or less reads 40 cm. The core's discretiser computes it, the arithmetic of
+    :func:`mazesim.sharp_volts_to_cm`.
 
     Args:
         volts: Readings of any shape.
@@ -109,25 +107,42 @@ def volts_to_cm(volts: npt.ArrayLike) -> npt.NDArray[np.float64]:
     Raises:
         InvalidArgumentError: A reading is below 0 V, infinite or not a number.
     """
-    values = _real_values(volts, "Sharp readings in volts")
-    refused = ~((values >= 0.0) & (values < np.inf))  # NaN compares false: refused too
-    if refused.any():
-        raise InvalidArgumentError(
-            "expected Sharp GP2Y0A41SK0F readings of 0 V or more, finite (its output never goes "
-            "below 0 V, as mazesim.sharp_volts_to_cm says), found "
-            f"{_refused_reading(values[refused])} V"
-        )
-    # First table row whose volts are at or below the reading (the rows' volts fall).
-    upper = np.searchsorted(-_TABLE_VOLTS, -values, side="left")
-    upper = np.clip(upper, 1, len(_TABLE_VOLTS) - 1)
-    volts_before, volts_after = _TABLE_VOLTS[upper - 1], _TABLE_VOLTS[upper]
-    metres_before, metres_after = _TABLE_METRES[upper - 1], _TABLE_METRES[upper]
-    with np.errstate(invalid="ignore"):
-        fraction = (values - volts_before) / (volts_after - volts_before)
-    metres = metres_before + fraction * (metres_after - metres_before)
-    metres = np.where(values >= _TABLE_VOLTS[0], _TABLE_METRES[0], metres)
-    metres = np.where(values <= _TABLE_VOLTS[-1], _TABLE_METRES[-1], metres)
-    return metres * 100.0
+    return distances_and_levels(volts)[0]
+
+
+def distance_levels(distances_cm: npt.ArrayLike) -> npt.NDArray[np.int64]:
+    """Table 4.1: the level (0 to 3) of each distance in cm.
+
+    Args:
+        distances_cm: Distances of any shape.
+
+    Returns:
+        The levels, int64, of the same shape.
+
+    Raises:
+        InvalidArgumentError: A distance is below 0 cm or not a number.
+    """
+    return _discretised(distances_cm, "distances in cm", in_cm=True)[1]
+
+
+def distances_and_levels(
+    volts: npt.ArrayLike,
+) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.int64]]:
+    """:func:`volts_to_cm` and :func:`distance_levels` of Sharp readings in one call to the
+    core's discretiser: the distances in cm (float64) and their levels (int64), each of the
+    readings' shape."""
+    return _discretised(volts, "Sharp readings in volts", in_cm=False)
+
+
+def _discretised(
+    values: npt.ArrayLike, what: str, *, in_cm: bool
+) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.int64]]:
+    """The core's distances and levels of ``values``, any shape."""
+    from mazesim._core import sharp_distances
+
+    array = _real_values(values, what)
+    cm, levels = sharp_distances(np.ascontiguousarray(array).reshape(-1), in_cm=in_cm)
+    return cm.reshape(array.shape), levels.reshape(array.shape)
 
 
 def _real_values(values: npt.ArrayLike, what: str) -> npt.NDArray[np.float64]:
@@ -144,36 +159,6 @@ def _real_values(values: npt.ArrayLike, what: str) -> npt.NDArray[np.float64]:
             f"of dtype {array.dtype}"
         )
     return array.astype(np.float64, copy=False)
-
-
-def _refused_reading(refused: npt.NDArray[np.float64]) -> float:
-    """The reading a refusal quotes, of the refused ones: not a number if one is, else the
-    lowest below 0 V, else infinity (as the core's ``lower_level_states`` quotes it)."""
-    if np.isnan(refused).any():
-        return math.nan
-    return float(refused.min())
-
-
-def distance_levels(distances_cm: npt.ArrayLike) -> npt.NDArray[np.int64]:
-    """Table 4.1: the level (0 to 3) of each distance in cm.
-
-    Args:
-        distances_cm: Distances of any shape.
-
-    Returns:
-        The levels, int64, of the same shape.
-
-    Raises:
-        InvalidArgumentError: A distance is below 0 cm or not a number.
-    """
-    values = _real_values(distances_cm, "distances in cm")
-    refused = ~(values >= 0.0)  # NaN compares false: refused too
-    if refused.any():
-        raise InvalidArgumentError(
-            "expected distances of 0 cm or more (an infinite one is level 3), found "
-            f"{_refused_reading(values[refused])} cm"
-        )
-    return np.searchsorted(np.asarray(LEVEL_EDGES_CM), values, side="right").astype(np.int64)
 
 
 def encode_state(levels: npt.ArrayLike) -> npt.NDArray[np.int64] | int:
@@ -227,8 +212,8 @@ def observation_states(observations: npt.ArrayLike) -> npt.NDArray[np.int64]:
     only, as :func:`volts_to_cm` takes them)."""
     from mazesim._core import lower_level_states
 
-    values = _real_values(observations, "observations in volts")
-    return lower_level_states(np.asarray(values, dtype=np.float32))
+    array = _real_values(observations, "observations in volts")
+    return lower_level_states(np.asarray(array, dtype=np.float32))
 
 
 def format_levels(levels: npt.ArrayLike) -> str:

@@ -21,7 +21,7 @@ import numpy.typing as npt
 
 from mazesim._core import RobotProfile, Simulator, World
 from mazesim.learn import qlearning
-from mazesim.learn.discretise import NUM_SENSORS, distance_levels, volts_to_cm
+from mazesim.learn.discretise import NUM_SENSORS, distances_and_levels
 from mazesim.replay.run import Decision, RecordedEpisode, RecordedRun, RunRobot
 from mazesim.sensor_rays import SensorRays
 
@@ -49,7 +49,7 @@ def table_levels(
     (volts), else None."""
     if robot.distance_sensor_unit != "volts" or len(robot.distance_sensor_names) != NUM_SENSORS:
         return None
-    return distance_levels(volts_to_cm(readings[:, :NUM_SENSORS]))
+    return distances_and_levels(readings[:, :NUM_SENSORS])[1]
 
 
 class EpisodeRecorder:

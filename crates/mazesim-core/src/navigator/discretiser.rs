@@ -49,7 +49,7 @@ impl Discretiser {
     pub fn new() -> Result<Self> {
         let seed = RobotProfile::builtin("seed")?;
         let sharp = seed.distance_sensors[0].model.table.clone();
-        let level = |volts: f32| level_of_cm(sharp.invert(volts as f64) * 100.0);
+        let level = |volts: f32| level_of_cm(sharp.invert(f64::from(volts)) * 100.0);
         let below = std::array::from_fn(|k| least_below(&level, k + 1));
         Ok(Self { sharp, below })
     }
@@ -65,7 +65,13 @@ impl Discretiser {
 
     /// `level` through the table itself.
     fn level_by_table(&self, volts: f32) -> usize {
-        level_of_cm(self.sharp.invert(volts as f64) * 100.0)
+        level_of_cm(self.cm(f64::from(volts)))
+    }
+
+    /// The distance in cm of one reading in volts, by inverting the Sharp table (clamped to
+    /// 3-40 cm): the arithmetic of `mazesim.sharp_volts_to_cm`.
+    pub fn cm(&self, volts: f64) -> f64 {
+        self.sharp.invert(volts) * 100.0
     }
 
     /// The state `sum(level[i] * 4^i)` of the first six readings (volts, in the report's order).
