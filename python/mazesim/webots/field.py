@@ -375,7 +375,8 @@ class Field(NotSimulated):
 
     def setSFString(self, value: str) -> None:
         """Sets a string field (a robot's ``customData`` is what its controller's
-        ``getCustomData`` reads)."""
+        ``getCustomData`` reads; another robot's ``controller``, in a world run, ends its
+        controller and starts the one named, as Webots does)."""
         text = field_value(value, -2, "Field.setSFString")
         if self._type != self.SF_STRING:
             self._wrong("set_sf_string")
@@ -383,6 +384,8 @@ class Field(NotSimulated):
         self._node._strings[self._name] = text
         if self._name == "customData":
             self._node._tell_custom_data(text)
+        elif self._name == "controller":
+            self._node._tell_controller(text)
 
     @property
     def value(self) -> Any:

@@ -304,6 +304,15 @@ class Fleet:
             self.restarts.append(index)
         return True
 
+    def change_controller(self, index: int, name: str) -> bool:
+        """Gives robot ``index`` the controller ``name``, as a supervisor's write of its node's
+        ``controller`` field does in Webots: its controller is restarted as that one
+        (:meth:`restart_controller`); False for a robot removed."""
+        if index in self.gone or not 0 <= index < len(self._robots):
+            return False
+        self._robots[index] = {**self._robots[index], "controller": str(name)}
+        return self.restart_controller(index)
+
     def set_custom_data(self, index: int, text: str) -> None:
         """Notes a supervisor's write of a robot's ``customData`` field, which the robot's
         controller reads after the world's next step (:meth:`custom_data`)."""

@@ -77,7 +77,7 @@ __all__ = [
 ]
 
 #: The protocol's version (``LINK_VERSION`` in ``capi/src/link.h``).
-VERSION = 3
+VERSION = 4
 HELLO, STEP, CLEANUP, CALL = 1, 2, 3, 4
 ENABLE, DISABLE, SET_POSITION, SET_VELOCITY, SET_ACCELERATION, LED_SET = 1, 2, 3, 4, 5, 6
 #: The tag of the keyboard in ENABLE, DISABLE and readings.
@@ -273,6 +273,10 @@ class RobotLink:
         parts = [
             _INT.pack(VERSION),
             _DOUBLE.pack(float(robot.getBasicTimeStep())),
+            # The clock as the controller starts: 0 at the world's start, the running time for
+            # a controller a supervisor restarted or imported (``wb_robot_get_time`` reads it
+            # before the first step, as Webots' does after ``wb_robot_init``).
+            _DOUBLE.pack(float(robot.getTime())),
             *(_text(str(v)) for v in (robot.getName(), robot.getModel(), robot.getCustomData())),
             *(_text(v) for v in (name, project, world)),
             _INT.pack(1 if robot.getSupervisor() else 0),

@@ -341,6 +341,17 @@ class Node(NotSimulated):
         elif self._fleet_index is not None:
             self._simulation().fleet.set_custom_data(self._fleet_index, text)
 
+    def _tell_controller(self, name: str) -> None:
+        """Gives another robot of a world run the controller a supervisor wrote into its
+        node's ``controller`` field: as Webots does when the field changes, the robot's running
+        controller ends (its ``Robot.step`` returns -1) and the one named starts on the robot
+        where it stands, from the world's next step on (none for "" or ``<none>``). The run's
+        own node and a run of one controller only keep the value."""
+        fleet = self._simulation().fleet
+        own = self._fleet_index == self._simulation().robot_index
+        if fleet is not None and self._fleet_index is not None and not own:
+            fleet.change_controller(self._fleet_index, name)
+
     def getId(self) -> int:
         """The node's unique id."""
         return self._id
@@ -451,10 +462,23 @@ class Node(NotSimulated):
         return enu_to_nue_matrix(matrix) if _file_frame() else matrix
 
     def getPose(self, fromNode: Node | None = None) -> list[float]:
-        """The node's 4 x 4 homogeneous transform in the world frame, row after row."""
+        """The node's 4 x 4 homogeneous transform, row after row: in the world frame, or with
+        ``fromNode`` in that node's frame (its inverse transform times this node's), as
+        Webots' ``wb_supervisor_node_get_pose(node, from_node)`` gives it."""
         x, y, z = self.getPosition()
         r = self.getOrientation()
-        return [*r[0:3], x, *r[3:6], y, *r[6:9], z, 0.0, 0.0, 0.0, 1.0]
+        if fromNode is None:
+            return [*r[0:3], x, *r[3:6], y, *r[6:9], z, 0.0, 0.0, 0.0, 1.0]
+        origin = fromNode.getPosition()
+        axes = fromNode.getOrientation()
+        offset = [x - origin[0], y - origin[1], z - origin[2]]
+        # The inverse of a rotation is its transpose: row i of it is column i of ``axes``.
+        turn = [
+            [sum(axes[3 * k + i] * r[3 * k + j] for k in range(3)) for j in range(3)]
+            for i in range(3)
+        ]
+        move = [sum(axes[3 * k + i] * offset[k] for k in range(3)) for i in range(3)]
+        return [*turn[0], move[0], *turn[1], move[1], *turn[2], move[2], 0.0, 0.0, 0.0, 1.0]
 
     def getCenterOfMass(self) -> list[float]:
         """The centre of mass: the node's position."""

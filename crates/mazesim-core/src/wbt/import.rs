@@ -63,6 +63,30 @@ const OTHER_ROBOT_PROTOS: &[&str] = &[
     "BB-8",
     "Nao",
 ];
+/// The footprints of robot PROTOs of Webots' library whose collision shapes lie inside the
+/// PROTO (which mazesim does not read): the radius (m) of the disc round the robot's origin that
+/// stands for the body, from each robot's published size (diameter, or length and width for
+/// the rectangular ones, whose disc is about half their larger side): Thymio II 110 x 112 mm;
+/// Khepera I 55 mm, Khepera III 130 mm, Khepera IV 140 mm; Elisa-3 50 mm; Hemisson 120 mm;
+/// Pioneer 2 and 3-DX 455 x 381 mm, 3-AT 508 x 497 mm; iRobot Create 340 mm; TurtleBot3
+/// Burger 138 x 178 mm; Robotino 3 450 mm.
+const ROBOT_FOOTPRINTS: &[(&str, f64)] = &[
+    ("Thymio2", 0.056),
+    ("Khepera1", 0.0275),
+    ("Khepera3", 0.065),
+    ("Khepera4", 0.07),
+    ("Elisa3", 0.025),
+    ("Hemisson", 0.06),
+    ("Pioneer2", 0.22),
+    ("Pioneer3dx", 0.22),
+    ("Pioneer3at", 0.25),
+    ("Create", 0.17),
+    ("TurtleBot3Burger", 0.09),
+    ("Robotino3", 0.225),
+];
+/// Half the height of the column a robot's footprint stands as (m), round its origin: it meets
+/// the e-puck's sensors whether the robot's origin is on the floor or at its wheels' axle.
+const FOOTPRINT_HALF_HEIGHT: f64 = 0.1;
 /// The controller the E-puck PROTO runs when its node leaves `controller` out (its declared
 /// default from Webots V8.5 to R2025a).
 pub const EPUCK_DEFAULT_CONTROLLER: &str = "e-puck_avoid_obstacles";
@@ -897,6 +921,20 @@ impl<'d> Importer<'d> {
         let outer = std::mem::replace(&mut self.look, look);
         for &shape in self.nodes(node, "boundingObject") {
             self.bounding(shape, &frame, label, 1);
+        }
+        let footprint = ROBOT_FOOTPRINTS
+            .iter()
+            .find(|(name, _)| *name == node.type_name);
+        if let (true, Some(&(kind, radius))) = (self.obstacles.len() == first, footprint) {
+            // A library robot's shapes are inside its PROTO: its footprint stands for them.
+            let origin = self.z_up(&frame).origin;
+            let column = Frame::new(origin, IDENTITY, [1.0; 3]);
+            self.emit_round(&column, radius, FOOTPRINT_HALF_HEIGHT, label, "footprint");
+            if self.obstacles.len() > first {
+                self.warn(format!(
+                    "{label}: its collision shapes are inside the {kind} PROTO: it stands as a disc of radius {radius} m round its origin (the {kind}'s size), a static obstacle"
+                ));
+            }
         }
         self.look = outer;
         let owners = self.obstacle_owners.split_off(first);

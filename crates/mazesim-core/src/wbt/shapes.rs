@@ -231,7 +231,7 @@ impl<'d> Importer<'d> {
 
     /// Adds the footprint of a round shape (cylinder, capsule, sphere) of `radius` whose axis,
     /// frame axis z, reaches `half_height` from its centre.
-    fn emit_round(
+    pub(super) fn emit_round(
         &mut self,
         frame: &Frame,
         radius: f64,

@@ -998,3 +998,33 @@ fn a_proto_file_read_as_a_world_is_named_a_proto_file() {
     let world = "#VRML_SIM R2023b utf8\nPROTO Foo [ ] { Solid { } }\nFoo { }\n";
     assert!(WbtImport::from_text(world, "w.wbt").is_ok());
 }
+
+#[test]
+fn a_library_robot_without_readable_shapes_stands_as_its_footprint() {
+    let w = import(
+        "#VRML_SIM R2023b utf8\nE-puck { translation 0 0 0 }\nThymio2 { translation -0.3 -0.6 0 controller \"<none>\" }\nPioneer3dx { translation 1 0.5 0.0975 rotation 0 0 1 0.5 }\nNao { translation 2 2 0.33 }\n",
+    );
+    let circles: Vec<([f64; 2], f64)> = w
+        .obstacles
+        .iter()
+        .filter_map(|o| match o {
+            Obstacle::Circle { center, radius } => Some((*center, *radius)),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(circles.len(), 2, "{circles:?}");
+    assert!((circles[0].0[0] + 0.3).abs() < 1e-9 && (circles[0].0[1] + 0.6).abs() < 1e-9);
+    assert!((circles[0].1 - 0.056).abs() < 1e-12);
+    assert!((circles[1].0[0] - 1.0).abs() < 1e-9 && (circles[1].1 - 0.22).abs() < 1e-12);
+    assert!(warned(&w, "line 3: Thymio2: its collision shapes are inside the Thymio2 PROTO: it stands as a disc of radius 0.056 m"), "{:?}", w.warnings);
+    assert!(warned(&w, "Thymio2: a robot that is not an e-puck (Thymio2): its controller runs, its body does not move; its collision shapes are static obstacles"), "{:?}", w.warnings);
+    // A robot without a known footprint is still no obstacle, and says so.
+    assert!(
+        warned(
+            &w,
+            "(Nao): its controller runs, its body does not move; it has no collision shape"
+        ),
+        "{:?}",
+        w.warnings
+    );
+}

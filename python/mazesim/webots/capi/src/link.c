@@ -102,6 +102,7 @@ static void receive_description(void) {
   if (receive_int() != LINK_VERSION)
     link_failed("mazesim speaks another version of the link");
   link_robot.basic_time_step = receive_double();
+  link_robot.time = receive_double();
   link_robot.name = receive_string();
   link_robot.model = receive_string();
   link_robot.custom_data = receive_string();

@@ -12,7 +12,7 @@
 #include <webots/types.h>
 
 /* The protocol's version; both ends check it. */
-#define LINK_VERSION 3
+#define LINK_VERSION 4
 
 /* What the controller sends. */
 enum { LINK_HELLO = 1, LINK_STEP = 2, LINK_CLEANUP = 3, LINK_CALL = 4 };
