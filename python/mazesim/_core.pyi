@@ -146,9 +146,9 @@ def import_wbt(
     pose, model, profile, controller, name, def_name, line), extension_devices,
     floor_textures, wall_textures (urls, owner, red, colour, roughness, candidates),
     floor_paint). `floor_images` maps texture files to (height, width) grey levels in [0, 1];
-    `wall_colours` maps wall texture files to their images' mean (red, green, blue) in [0, 1]; of several e-pucks, the first
-    whose `controller` field is `controller` is the robot; `robot_line` picks the robot (an
-    e-puck or not) on that line of the file."""
+    `wall_colours` maps wall texture files to their images' mean (red, green, blue) in [0, 1];
+    of several e-pucks, the first whose `controller` field is `controller` is the robot;
+    `robot_line` picks the robot (an e-puck or not) on that line of the file."""
 
 def import_wbt_text(
     text: str,

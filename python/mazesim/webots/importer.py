@@ -270,7 +270,7 @@ def _texture_values(
             if not files and len(problems) == said:
                 urls = texture["urls"]
                 problems.append(
-                    f"{texture['owner']}: {kind} texture \"{urls[0] if urls else ''}\" not found "
+                    f'{texture["owner"]}: {kind} texture "{urls[0] if urls else ""}" not found '
                     f"(looked for {', '.join(texture['candidates'])}): {_UNREAD[kind]}"
                 )
         for key, candidate in files[:1]:

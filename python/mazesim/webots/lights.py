@@ -20,9 +20,9 @@ is 1 but for a spot light: 0 for a point farther from its direction than its ``c
 falling linearly to 0 from its ``beamWidth`` to its ``cutOffAngle``. A point or spot light gives
 nothing beyond its ``radius``. A light inside a ``Transform``, ``Pose``, ``Group``, ``Solid``
 or any node with a ``translation`` and ``rotation`` (a robot's slot too) is placed by its
-parents' poses composed (their ``scale`` is not applied), as Webots places it. Walls do not shade (Webots' LightSensor ``occlusion`` defaults to
-FALSE). A world without any light node gets :data:`DEFAULT_IRRADIANCE`; one whose lights are all
-off gets none.
+parents' poses composed (their ``scale`` is not applied), as Webots places it. Walls do not
+shade (Webots' LightSensor ``occlusion`` defaults to FALSE). A world without any light node
+gets :data:`DEFAULT_IRRADIANCE`; one whose lights are all off gets none.
 """
 
 from __future__ import annotations

@@ -540,9 +540,7 @@ def _scene_nodes(
         top: list[SceneNode] = []
         # (node, the list its SceneNode goes into, its children's SceneNodes and its
         # single-node fields' once visited)
-        Visited = tuple[
-            list[SceneNode], list[tuple[str, SceneNode]], list[tuple[str, SceneNode]]
-        ]
+        Visited = tuple[list[SceneNode], list[tuple[str, SceneNode]], list[tuple[str, SceneNode]]]
         pending: list[tuple[Node, list[SceneNode] | _Named, Visited | None]] = [
             (node, top, None) for node in reversed(nodes)
         ]

@@ -335,7 +335,10 @@ impl WbtImport {
             .iter()
             .enumerate()
             .map(|(index, texture)| {
-                let mean = texture.candidates.iter().find_map(|c| mean_colours.get(c))?;
+                let mean = texture
+                    .candidates
+                    .iter()
+                    .find_map(|c| mean_colours.get(c))?;
                 let colour = [0, 1, 2].map(|i| (mean[i] * texture.colour[i]).clamp(0.0, 1.0));
                 Some(Look {
                     colour: colour.iter().all(|c| c.is_finite()).then_some(colour),
@@ -401,7 +404,9 @@ mod tests {
         // Without its image the wall is white, as before.
         assert_eq!(w.obstacle_looks[0].reflectance, 1.0);
         assert_eq!(w.obstacle_looks[0].colour, None);
-        let other = [("elsewhere.png".to_string(), [0.0; 3])].into_iter().collect();
+        let other = [("elsewhere.png".to_string(), [0.0; 3])]
+            .into_iter()
+            .collect();
         w.shade_walls(&other);
         assert_eq!(w.obstacle_looks[0].reflectance, 1.0);
         let found = [("textures/bricks.png".to_string(), [0.8, 0.4, 0.2])]
