@@ -123,7 +123,7 @@ def samples(tmp: Path) -> dict[str, Any]:
         "text": world.to_toml(),
         "source": "sample",
         "floor_images": None,
-        "wall_reds": None,
+        "wall_colours": None,
         "codes": core.default_codes(),
         "volts": 1.0,
         "width": 5,

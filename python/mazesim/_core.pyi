@@ -148,17 +148,17 @@ def import_wbt(
     floor_images: dict[str, npt.NDArray[np.float64]] | None = None,
     controller: str | None = None,
     robot_line: int | None = None,
-    wall_reds: dict[str, float] | None = None,
+    wall_colours: dict[str, tuple[float, float, float]] | None = None,
 ) -> tuple[World, dict[str, Any]]:
     """Imports a Webots .wbt file: the mazesim World and the import report (obstacles, robot,
     basic_time_step_ms, warnings, one_controller_warnings (those of a run of one controller
     only), robot_model, robot_line, robot_profile, robots (every robot:
     pose, model, profile, controller, name, def_name, line), extension_devices,
-    floor_textures, wall_textures (urls, owner, red, roughness, candidates), floor_paint).
-    `floor_images` maps texture files to (height, width) grey levels in [0, 1]; `wall_reds`
-    maps wall texture files to their images' mean red in [0, 1]; of several e-pucks, the first
-    whose `controller` field is `controller` is the robot; `robot_line` picks the robot (an
-    e-puck or not) on that line of the file."""
+    floor_textures, wall_textures (urls, owner, red, colour, roughness, candidates),
+    floor_paint). `floor_images` maps texture files to (height, width) grey levels in [0, 1];
+    `wall_colours` maps wall texture files to their images' mean (red, green, blue) in [0, 1];
+    of several e-pucks, the first whose `controller` field is `controller` is the robot;
+    `robot_line` picks the robot (an e-puck or not) on that line of the file."""
 
 def import_wbt_text(
     text: str,
@@ -167,7 +167,7 @@ def import_wbt_text(
     controller: str | None = None,
     robot_line: int | None = None,
     imported_from: int | None = None,
-    wall_reds: dict[str, float] | None = None,
+    wall_colours: dict[str, tuple[float, float, float]] | None = None,
 ) -> tuple[World, dict[str, Any]]:
     """Imports the text of a .wbt file; `source` names it in error messages and names the world,
     and floor textures are looked for beside it."""

@@ -112,6 +112,22 @@ def test_a_textured_wall_reflects_by_its_image_s_mean_red(tmp_path: Path) -> Non
     assert np.all(readings < white - 50.0), (readings, white)
 
 
+def test_a_camera_sees_a_textured_wall_in_its_image_s_mean_colour(tmp_path: Path) -> None:
+    """The one mean colour of the image gives the infra-red factor (by its red) and the
+    colour a camera draws: half red, all green is (0.5, 1, 0) times the base colour."""
+    image = np.zeros((8, 8, 3), dtype=np.uint8)
+    image[:, :4, 0] = 255
+    image[:, :, 1] = 255
+    appearance = (
+        'PBRAppearance { baseColor 1 0.5 1 baseColorMap ImageTexture { url [ "textures/wall.png" '
+        "] } }"
+    )
+    world, report = import_wbt(textured_wall(tmp_path, appearance, image))
+    assert report["wall_textures"][0]["colour"] == [1.0, 0.5, 1.0]
+    assert world.wall_colours().tolist() == [pytest.approx([0.5, 0.5, 0.0])]
+    assert [o["reflectance"] for o in report["obstacles"]] == [pytest.approx(0.6)]
+
+
 @pytest.mark.parametrize(
     ("appearance", "factor"),
     [
@@ -138,9 +154,17 @@ def test_a_texture_s_red_multiplies_the_appearance_s(
     assert [o["reflectance"] for o in report["obstacles"]] == [pytest.approx(factor, abs=2e-3)]
 
 
-def test_a_textured_wall_without_its_image_reflects_as_white(tmp_path: Path) -> None:
+def test_a_textured_wall_without_its_image_reflects_as_white_and_says_so(
+    tmp_path: Path,
+) -> None:
+    """As a floor texture, a wall texture that is nowhere is a warning naming the files looked
+    for, once."""
     world, report = import_wbt(textured_wall(tmp_path, PLAIN_TEXTURE, None))
     assert [o["reflectance"] for o in report["obstacles"]] == [1.0]
+    said = [w for w in report["warnings"] if "wall texture" in w]
+    assert len(said) == 1 and '"wall.png" not found (looked for ' in said[0]
+    assert str(tmp_path / "textures" / "wall.png") in said[0]
+    assert np.isnan(world.wall_colours()).all()
     readings, expected = front_readings(world, 1.0)
     assert readings == pytest.approx(expected, rel=0.02, abs=1.0)
 

@@ -100,3 +100,41 @@ SpotLight {
     values = light_readings(spot)
     # The robot is at the origin, 90 degrees off the spot's beam: every sensor reads the dark.
     assert values == pytest.approx([4095.0] * 8)
+
+
+def test_lights_inside_groups_and_poses_are_placed_by_their_parents() -> None:
+    """The lamp of ``LAMP_WORLD`` held in a Transform 0.3 m along +y, turned a quarter turn
+    (its own pose now relative to the Transform), and a PointLight in a Group in a Pose: each
+    is where its parents' poses put it, as Webots places it; the lamp lights the robot as the
+    one at the top of the file does."""
+    nested = """#VRML_SIM R2025a utf8
+WorldInfo { basicTimeStep 32 }
+TexturedBackgroundLight {
+  texture "mountains"
+  luminosity -20
+}
+Transform {
+  translation 0 0.3 0
+  rotation 0 0 1 -1.5708
+  children [
+    ConstructionLamp {
+      translation 0 0 0.04
+      spotLightIntensity 0.1
+      spotLightRadius 1
+    }
+  ]
+}
+"""
+    pose = """Pose {
+  translation 1 2 0
+  rotation 0 0 1 1.5708
+  children [ Group { children [ PointLight { location 0.5 0 0.1 } ] } ]
+}
+"""
+    scene = read_scene(nested + pose)
+    assert scene.lights is not None and len(scene.lights) == 3
+    _, lamp, point = scene.lights
+    assert lamp.position == pytest.approx((0.0, 0.293, 0.045), abs=1e-4)
+    assert lamp.beam == pytest.approx((0.0, -1.0, 0.0), abs=1e-4)
+    assert point.position == pytest.approx((1.0, 2.5, 0.1), abs=1e-4)
+    assert light_readings(nested) == pytest.approx(light_readings(LAMP_WORLD), abs=1e-6)

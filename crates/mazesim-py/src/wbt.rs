@@ -83,6 +83,7 @@ fn robot_and_floor(out: &Bound<'_, PyDict>, import: &WbtImport) -> PyResult<()> 
         d.set_item("urls", texture.urls.clone())?;
         d.set_item("owner", &texture.owner)?;
         d.set_item("red", texture.red)?;
+        d.set_item("colour", texture.colour.to_vec())?;
         d.set_item("roughness", texture.roughness)?;
         d.set_item("candidates", texture.candidates.clone())
     })?;
@@ -138,37 +139,41 @@ fn grey_images(images: Option<&Bound<'_, PyAny>>) -> PyResult<BTreeMap<String, G
     Ok(out)
 }
 
-/// The mean reds handed in for the wall textures: `{file: mean red in [0, 1]}`.
-fn wall_reds(reds: Option<&Bound<'_, PyAny>>) -> PyResult<BTreeMap<String, f64>> {
-    let reds = match reds {
+/// The mean colours handed in for the wall textures: `{file: (red, green, blue), each in
+/// [0, 1]}`.
+fn wall_colours(colours: Option<&Bound<'_, PyAny>>) -> PyResult<BTreeMap<String, [f64; 3]>> {
+    let colours = match colours {
         None => None,
         Some(obj) => Some(dict_argument(
             obj,
-            "wall_reds",
-            " of file name -> mean red",
+            "wall_colours",
+            " of file name -> mean (red, green, blue)",
         )?),
     };
     let mut out = BTreeMap::new();
-    for (key, value) in reds.into_iter().flat_map(|d| d.iter()) {
+    for (key, value) in colours.into_iter().flat_map(|d| d.iter()) {
         let file: String = key.extract().map_err(|_| {
             wrong_type(format!(
-                "expected the keys of wall_reds to be file names (str), found {}",
+                "expected the keys of wall_colours to be file names (str), found {}",
                 type_name(&key)
             ))
         })?;
-        let red: f64 = value.extract().map_err(|_| {
+        let colour: (f64, f64, f64) = value.extract().map_err(|_| {
             wrong_type(format!(
-                "wall texture {file:?}: expected its mean red as a float, found {}",
+                "wall texture {file:?}: expected its mean colour as three floats (red, green, \
+                 blue), found {}",
                 type_name(&value)
             ))
         })?;
-        if !(0.0..=1.0).contains(&red) {
+        let colour = [colour.0, colour.1, colour.2];
+        if !colour.iter().all(|c| (0.0..=1.0).contains(c)) {
             return Err(Error::InvalidArgument(format!(
-                "wall texture {file:?}: expected its mean red in [0, 1], found {red}"
+                "wall texture {file:?}: expected its mean colour's red, green and blue in \
+                 [0, 1], found {colour:?}"
             )))
             .py();
         }
-        out.insert(file, red);
+        out.insert(file, colour);
     }
     Ok(out)
 }
@@ -277,7 +282,7 @@ fn report<'py>(py: Python<'py>, import: &WbtImport) -> PyResult<Bound<'py, PyDic
     Ok(out)
 }
 
-/// The `floor_images` and `wall_reds` arguments of an import.
+/// The `floor_images` and `wall_colours` arguments of an import.
 type Textures<'a, 'py> = (Option<&'a Bound<'py, PyAny>>, Option<&'a Bound<'py, PyAny>>);
 
 fn world_name(source: &Path) -> String {
@@ -292,10 +297,10 @@ fn finish<'py>(
     py: Python<'py>,
     mut import: WbtImport,
     source: &Path,
-    (floor_images, reds): Textures<'_, 'py>,
+    (floor_images, colours): Textures<'_, 'py>,
 ) -> PyResult<(PyWorld, Bound<'py, PyDict>)> {
     import.paint_floor(&grey_images(floor_images)?);
-    import.shade_walls(&wall_reds(reds)?);
+    import.shade_walls(&wall_colours(colours)?);
     let import = &import;
     let world = import
         .to_world_of(&world_name(source), &source.display().to_string())
@@ -310,26 +315,27 @@ fn finish<'py>(
 
 /// Imports a Webots `.wbt` file: the mazesim World and the import report (a dict).
 /// `floor_images` maps texture files (as the report's `floor_textures` candidates name them) to
-/// their grey levels; the textures without one are reported missing. `wall_reds` maps wall
-/// texture files (the report's `wall_textures` candidates) to their images' mean red in
-/// [0, 1], which the walls' infra-red reflection factor follows. `controller` names the
+/// their grey levels; the textures without one are reported missing. `wall_colours` maps wall
+/// texture files (the report's `wall_textures` candidates) to their images' mean colour (red,
+/// green, blue in [0, 1]), which the walls' infra-red reflection factor (by its red) and the
+/// colour a camera sees follow. `controller` names the
 /// controller that will run: of several e-pucks, the first whose `controller` field is it is
 /// the robot; `robot_line` picks the robot (an e-puck or not) whose node is on that line (the
 /// `line` of an entry of the report's `robots`).
 #[pyfunction]
-#[pyo3(signature = (path, floor_images = None, controller = None, robot_line = None, wall_reds = None))]
+#[pyo3(signature = (path, floor_images = None, controller = None, robot_line = None, wall_colours = None))]
 pub fn import_wbt<'py>(
     py: Python<'py>,
     path: PathArg,
     floor_images: Option<&Bound<'py, PyAny>>,
     controller: Option<Text>,
     robot_line: Option<IntArg>,
-    wall_reds: Option<&Bound<'py, PyAny>>,
+    wall_colours: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<(PyWorld, Bound<'py, PyDict>)> {
     enter(|| {
         let path: PathBuf = path.value("path", "a str or os.PathLike")?;
         let robot = (controller, robot_line, None);
-        import_chosen(py, robot, (floor_images, wall_reds), &path, |choice| {
+        import_chosen(py, robot, (floor_images, wall_colours), &path, |choice| {
             WbtImport::load_for(&path, choice)
         })
     })
@@ -373,8 +379,8 @@ fn line_number(line: Option<IntArg>, name: &str) -> PyResult<Option<usize>> {
 /// Imports the text of a `.wbt` file; `source` names it in error messages and names the world.
 /// Lone surrogates (not UTF-8) are read as U+FFFD, so that they end in a located format error.
 #[pyfunction]
-#[pyo3(signature = (text, source = SourceName::Value(Label("<string>".into())), floor_images = None, controller = None, robot_line = None, imported_from = None, wall_reds = None),
-    text_signature = "(text, source='<string>', floor_images=None, controller=None, robot_line=None, imported_from=None, wall_reds=None)")]
+#[pyo3(signature = (text, source = SourceName::Value(Label("<string>".into())), floor_images = None, controller = None, robot_line = None, imported_from = None, wall_colours = None),
+    text_signature = "(text, source='<string>', floor_images=None, controller=None, robot_line=None, imported_from=None, wall_colours=None)")]
 pub fn import_wbt_text<'py>(
     py: Python<'py>,
     text: &Bound<'py, PyAny>,
@@ -383,14 +389,14 @@ pub fn import_wbt_text<'py>(
     controller: Option<Text>,
     robot_line: Option<IntArg>,
     imported_from: Option<IntArg>,
-    wall_reds: Option<&Bound<'py, PyAny>>,
+    wall_colours: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<(PyWorld, Bound<'py, PyDict>)> {
     enter(|| {
         let text = typed_argument::<PyString>(text, "text", "a str")?;
         let text = text.to_string_lossy();
         let source = source.value("source", "a str")?.0;
         let robot = (controller, robot_line, imported_from);
-        let textures = (floor_images, wall_reds);
+        let textures = (floor_images, wall_colours);
         import_chosen(py, robot, textures, Path::new(&source), |choice| {
             WbtImport::from_text_for(&text, &source, choice)
         })

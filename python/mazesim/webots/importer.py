@@ -126,13 +126,14 @@ class FloorTexture(TypedDict):
 
 
 class WallTexture(TypedDict):
-    """An image texture of a wall's appearance: the red the appearance gives a white texture,
-    its roughness, and the files looked for (its image's mean red sets the wall's infra-red
-    reflection factor)."""
+    """An image texture of a wall's appearance: the red and the ``colour`` the appearance gives
+    a white texture, its roughness, and the files looked for (its image's mean colour sets the
+    wall's infra-red reflection factor, by its red, and the colour a camera sees)."""
 
     urls: list[str]
     owner: str
     red: float
+    colour: list[float]
     roughness: float
     candidates: list[str]
 
@@ -223,9 +224,10 @@ def grey_levels(path: str) -> npt.NDArray[np.float64]:
     return np.ascontiguousarray(np.asarray(grey, dtype=np.float64) / 255.0)
 
 
-def mean_red(path: str) -> float:
-    """The mean red of an image file (PNG, JPEG, ...) in [0, 1]: what Webots' infra-red
-    sensors read of a wall textured with it, on average over its surface.
+def mean_colour(path: str) -> tuple[float, float, float]:
+    """The mean red, green and blue of an image file (PNG, JPEG, ...), each in [0, 1]: the one
+    colour of a wall textured with it, which Webots' infra-red sensors read (by its red) and a
+    camera sees, on average over its surface.
 
     Raises:
         OSError: The file cannot be read or decoded.
@@ -233,12 +235,16 @@ def mean_red(path: str) -> float:
     from PIL import Image
 
     with open_input(path, "the wall texture") as raw, Image.open(raw) as image:
-        red = np.asarray(image.convert("RGB"), dtype=np.float64)[:, :, 0]
-    return float(min(max(red.mean() / 255.0, 0.0), 1.0))
+        rgb = np.asarray(image.convert("RGB"), dtype=np.float64)
+    red, green, blue = (float(min(max(v / 255.0, 0.0), 1.0)) for v in rgb.mean(axis=(0, 1)))
+    return red, green, blue
 
 
 #: What a texture that cannot be read leaves, by the kind of its owner.
-_UNREAD = {"floor": "the floor is left bare", "wall": "the wall reflects as white"}
+_UNREAD = {
+    "floor": "the floor is left bare",
+    "wall": "the wall reflects as white and a camera sees it grey",
+}
 
 _Value = TypeVar("_Value")
 
@@ -252,13 +258,21 @@ def _texture_values(
     """What ``read`` makes of each texture's image (a floor's grey levels, a wall's mean red),
     by the candidate the core looks it up by: the first candidate file that exists, else the
     URL's file through ``resolver`` or the download cache (:func:`_downloaded`); and a warning
-    for each image that cannot be had or decoded. ``kind``: ``floor`` or ``wall``."""
+    for each image that cannot be had or decoded: the one place a missing texture of any kind
+    is said, naming the files looked for. ``kind``: ``floor`` or ``wall``."""
     values: dict[str, _Value] = {}
     problems: list[str] = []
     for texture in textures:
         files = [(c, c) for c in texture["candidates"] if os.path.isfile(c)]
         if not files and texture["candidates"]:
+            said = len(problems)
             files = _downloaded(texture, kind, problems, resolver)
+            if not files and len(problems) == said:
+                urls = texture["urls"]
+                problems.append(
+                    f'{texture["owner"]}: {kind} texture "{urls[0] if urls else ""}" not found '
+                    f"(looked for {', '.join(texture['candidates'])}): {_UNREAD[kind]}"
+                )
         for key, candidate in files[:1]:
             if key in values:
                 continue
@@ -318,32 +332,21 @@ def undownloaded_textures(warnings: list[str]) -> list[str]:
 def _with_floor(
     imported: tuple[World, dict[str, Any]],
     again: Callable[
-        [dict[str, npt.NDArray[np.float64]], dict[str, float]], tuple[World, dict[str, Any]]
+        [dict[str, npt.NDArray[np.float64]], dict[str, tuple[float, float, float]]],
+        tuple[World, dict[str, Any]],
     ],
     resolver: Resolver | None = None,
 ) -> tuple[World, ImportReport]:
-    """Imports again with the floor textures' images and the wall textures' mean reds
-    (``webots://`` and http(s) ones through the world's ``resolver``) when any was found."""
+    """Imports again with the floor textures' images and the wall textures' mean colours
+    (``webots://`` and http(s) ones through the world's ``resolver``) when any was found; each
+    texture that cannot be had is warned of once, floor and wall alike."""
     world, report = imported
     images, problems = _texture_values(report["floor_textures"], "floor", grey_levels, resolver)
-    reds, unread = _texture_values(report.get("wall_textures") or [], "wall", mean_red, resolver)
-    if images or reds:
-        world, report = again(images, reds)
-    problems += unread
-    warnings: list[str] = report["warnings"]
-    for problem in problems:
-        # A texture that could not be downloaded is said once, with why, where the import
-        # said it was not found.
-        owner = problem.split(": floor texture", 1)[0]
-        found = [
-            i
-            for i, w in enumerate(warnings)
-            if w.startswith(f"{owner}: floor texture ") and "not found (looked for" in w
-        ]
-        if found:
-            warnings[found[0]] = problem
-        else:
-            warnings.append(problem)
+    textures = report.get("wall_textures") or []
+    colours, unread = _texture_values(textures, "wall", mean_colour, resolver)
+    if images or colours:
+        world, report = again(images, colours)
+    report["warnings"].extend(problems + unread)
     return world, cast(ImportReport, report)
 
 
@@ -380,12 +383,12 @@ def import_wbt(
     if text is None:  # not UTF-8 or not readable: the core says why, with the place
         world, report = _with_floor(
             _core.import_wbt(file, controller=controller, robot_line=robot_line),
-            lambda images, reds: _core.import_wbt(
+            lambda images, colours: _core.import_wbt(
                 file,
                 floor_images=images,
                 controller=controller,
                 robot_line=robot_line,
-                wall_reds=reds,
+                wall_colours=colours,
             ),
         )
         report["recognition"] = {"cameras": [], "objects": []}
@@ -440,7 +443,7 @@ def import_wbt_text(
 
     expanded, protos = expand_world(text, source)
 
-    def imported(images: Any = None, reds: Any = None) -> tuple[World, dict[str, Any]]:
+    def imported(images: Any = None, colours: Any = None) -> tuple[World, dict[str, Any]]:
         return _core.import_wbt_text(
             expanded,
             source,
@@ -448,7 +451,7 @@ def import_wbt_text(
             controller=controller,
             robot_line=robot_line,
             imported_from=imported_from,
-            wall_reds=reds,
+            wall_colours=colours,
         )
 
     world, report = _with_floor(imported(), imported, world_resolver(text, source))

@@ -18,18 +18,20 @@ light's ``color``, the attenuation of a point or spot light at distance ``d`` is
 ``a0 + a1 d + a2 d^2`` (its ``attenuation`` field; a directional light has none), and ``spot``
 is 1 but for a spot light: 0 for a point farther from its direction than its ``cutOffAngle``,
 falling linearly to 0 from its ``beamWidth`` to its ``cutOffAngle``. A point or spot light gives
-nothing beyond its ``radius``. Walls do not shade (Webots' LightSensor ``occlusion`` defaults to
-FALSE). A world without any light node gets :data:`DEFAULT_IRRADIANCE`; one whose lights are all
-off gets none.
+nothing beyond its ``radius``. A light inside a ``Transform``, ``Pose``, ``Group``, ``Solid``
+or any node with a ``translation`` and ``rotation`` (a robot's slot too) is placed by its
+parents' poses composed (their ``scale`` is not applied), as Webots places it. Walls do not
+shade (Webots' LightSensor ``occlusion`` defaults to FALSE). A world without any light node
+gets :data:`DEFAULT_IRRADIANCE`; one whose lights are all off gets none.
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Iterable
+from collections.abc import Iterable, Iterator
 from dataclasses import dataclass
 
-from mazesim.webots.frames import nue_to_enu, rotation_matrix
+from mazesim.webots.frames import WORLD_FRAME, Frame, nue_to_enu, placed
 from mazesim.webots.proto.syntax import Field, Node, first_value
 
 __all__ = ["BACKGROUND_LIGHTS", "DEFAULT_IRRADIANCE", "Light", "irradiance", "read_lights"]
@@ -124,13 +126,28 @@ def _background_light(light: Node, nue: bool) -> Light | None:
     return Light(None, _unit(*direction), intensity=intensity, ambient=1.0, color=color)
 
 
-def _construction_lamp(lamp: Node, nue: bool) -> Light:
-    """The SpotLight of a ``ConstructionLamp``, placed by the lamp's own pose."""
-    tx, ty, tz = _numbers(lamp, "translation", (0.0, 0.0, 0.07))
-    turn = rotation_matrix(*_numbers(lamp, "rotation", (0.0, 0.0, 1.0, 0.0)))
-    local = [sum(turn[3 * i + k] * _LAMP_LOCATION[k] for k in range(3)) for i in range(3)]
-    location = (tx + local[0], ty + local[1], tz + local[2])
-    beam = (turn[0], turn[3], turn[6])
+def _point(frame: Frame, p: tuple[float, ...]) -> tuple[float, float, float]:
+    """A point of a node placed in ``frame``, in the world file's frame."""
+    x, y, z = placed(frame, p)[0]
+    return x, y, z
+
+
+def _direction(frame: Frame, d: tuple[float, ...]) -> tuple[float, float, float]:
+    """A direction of a node placed in ``frame``, in the world file's frame."""
+    m = frame[1]
+    x, y, z = (sum(m[3 * i + k] * d[k] for k in range(3)) for i in range(3))
+    return x, y, z
+
+
+def _construction_lamp(lamp: Node, holder: Frame, nue: bool) -> Light:
+    """The SpotLight of a ``ConstructionLamp`` placed in ``holder``, by the lamp's own pose."""
+    frame = placed(
+        holder,
+        _numbers(lamp, "translation", (0.0, 0.0, 0.07)),
+        _numbers(lamp, "rotation", (0.0, 0.0, 1.0, 0.0)),
+    )
+    location = _point(frame, _LAMP_LOCATION)
+    beam = _direction(frame, (1.0, 0.0, 0.0))
     (intensity,) = _numbers(lamp, "spotLightIntensity", (2.0,))
     (radius,) = _numbers(lamp, "spotLightRadius", (100.0,))
     return Light(
@@ -145,16 +162,34 @@ def _construction_lamp(lamp: Node, nue: bool) -> Light:
     )
 
 
-def read_lights(nodes: Iterable[Node], nue: bool = False) -> list[Light] | None:
-    """The lights among a world file's nodes that are on; None when it has no light node.
+def _placed_nodes(tree: Iterable[Node]) -> Iterator[tuple[Node, Frame]]:
+    """Every node of the trees ``tree`` (``USE`` ones left out) with the frame of the node
+    that holds it, its parents' ``translation`` and ``rotation`` composed, in file order (a
+    stack, not recursion, so at any depth)."""
+    pending = [(node, WORLD_FRAME) for node in reversed(list(tree))]
+    while pending:
+        node, holder = pending.pop()
+        if node.use_name is not None:
+            continue
+        yield node, holder
+        offset = _numbers(node, "translation", (0.0, 0.0, 0.0))
+        turn = first_value([node], "rotation", lambda item: item.numbers(4))
+        frame = placed(holder, offset, turn)
+        inner = [(n, frame) for item in node.fields for n in item.nodes]
+        pending.extend(reversed(inner))
+
+
+def read_lights(tree: Iterable[Node], nue: bool = False) -> list[Light] | None:
+    """The lights of a world file that are on, each placed by its parents' poses; None when
+    it has no light node.
 
     Args:
-        nodes: Every node of the world file (:func:`~mazesim.webots.proto.syntax.nodes_in_order`).
+        tree: The nodes at the top of the world file (their children are walked).
         nue: Whether the file is in Webots' old NUE frame (y up); positions are converted.
     """
     lights: list[Light] = []
     declared = False
-    for light in nodes:
+    for light, holder in _placed_nodes(tree):
         if light.type_name not in _LIGHT_TYPES + _LIGHT_PROTOS:
             continue
         declared = True
@@ -163,7 +198,7 @@ def read_lights(nodes: Iterable[Node], nue: bool = False) -> list[Light] | None:
                 lights.append(background)
             continue
         if light.type_name == "ConstructionLamp":
-            lights.append(_construction_lamp(light, nue))
+            lights.append(_construction_lamp(light, holder, nue))
             continue
         if first_value([light], "on", Field.flag) is False:
             continue
@@ -171,16 +206,16 @@ def read_lights(nodes: Iterable[Node], nue: bool = False) -> list[Light] | None:
         (ambient,) = _numbers(light, "ambientIntensity", (0.0,))
         color = sum(_numbers(light, "color", (1.0, 1.0, 1.0))) / 3.0
         if light.type_name == "DirectionalLight":
-            x, y, z = _numbers(light, "direction", (0.0, 0.0, -1.0))
+            x, y, z = _direction(holder, _numbers(light, "direction", (0.0, 0.0, -1.0)))
             direction = _unit(*(nue_to_enu(x, y, z) if nue else (x, y, z)))
             lights.append(Light(None, direction, intensity, ambient, color=color))
             continue
-        x, y, z = _numbers(light, "location", (0.0, 0.0, 0.0))
+        x, y, z = _point(holder, _numbers(light, "location", (0.0, 0.0, 0.0)))
         a0, a1, a2 = _numbers(light, "attenuation", (1.0, 0.0, 0.0))
         (radius,) = _numbers(light, "radius", (100.0,))
         beam, cut_off, beam_width = None, math.pi, math.pi
         if light.type_name == "SpotLight":
-            bx, by, bz = _numbers(light, "direction", (0.0, 0.0, -1.0))
+            bx, by, bz = _direction(holder, _numbers(light, "direction", (0.0, 0.0, -1.0)))
             beam = _unit(*(nue_to_enu(bx, by, bz) if nue else (bx, by, bz)))
             (cut_off,) = _numbers(light, "cutOffAngle", (math.pi / 4,))
             (beam_width,) = _numbers(light, "beamWidth", (math.pi / 2,))

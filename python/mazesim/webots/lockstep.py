@@ -872,11 +872,13 @@ def _say_what_is_missing(
 ) -> tuple[bool, dict[str, str], dict[str, PreparedController]]:
     """Prepares each robot's controller once (a C or C++ one is built into the cache, which its
     process then takes) and says at the run's start what each one lacks, as a run of one robot
-    does; the list is kept on its robot's run. A C or C++ controller that does not compile
-    leaves its robot standing still, the others running, as in Webots. Returns whether a
-    controller's Tk windows need a virtual display, the environment the controllers' windows
-    need and each controller file's preparation."""
+    does, each statement once for the world with the robots it concerns (thirty robots of one
+    controller are named on one line); the list is kept on its robot's run. A C or C++
+    controller that does not compile leaves its robot standing still, the others running, as in
+    Webots. Returns whether a controller's Tk windows need a virtual display, the environment
+    the controllers' windows need and each controller file's preparation."""
     prepared: dict[str, PreparedController] = {}
+    concerned: dict[str, list[str]] = {}
     for run in runs:
         if run.controller is None:
             continue
@@ -890,11 +892,27 @@ def _say_what_is_missing(
                 print(f"mazesim: {note}", file=sys.stderr)
         run.missing = tuple(prepared[run.controller].missing)
         for missing in run.missing:
-            print(f"mazesim: missing: robot {run.name!r}: {missing}", file=sys.stderr)
+            concerned.setdefault(missing, []).append(repr(run.name))
+    for missing, names in concerned.items():
+        print(f"mazesim: missing: {_robots_named(names)}: {missing}", file=sys.stderr)
     environment: dict[str, str] = {}
     for done in prepared.values():
         environment.update(done.environment)
     return any(done.virtual_display for done in prepared.values()), environment, prepared
+
+
+#: How many robots a statement of what is missing names before it counts the rest.
+NAMED_ROBOTS = 5
+
+
+def _robots_named(names: list[str]) -> str:
+    """``robot 'a'``, or ``robots 'a', 'b'``, the first :data:`NAMED_ROBOTS` then how many more
+    (names already quoted)."""
+    if len(names) == 1:
+        return f"robot {names[0]}"
+    shown = ", ".join(names[:NAMED_ROBOTS])
+    rest = len(names) - NAMED_ROBOTS
+    return f"robots {shown}" + (f" and {rest} more ({len(names)} in all)" if rest > 0 else "")
 
 
 class Interruption:

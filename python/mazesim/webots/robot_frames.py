@@ -5,9 +5,11 @@ mazesim moves a robot on the floor's plane (x, y and heading), the frame the imp
 robot's devices in. A robot node raised above the floor or tilted (a camera robot looking down
 at the arena) keeps its height and tilt in Webots: :func:`robot_mount` gives them, so that a
 device's pose in the robot's node becomes its pose above the floor. :func:`robot_shapes` lists
-the ``Box``, ``Cylinder``, ``Capsule`` and ``Sphere`` shapes of each robot node's children
-(through ``Solid``, ``Transform``, ``Pose``, ``Group`` and device nodes, not a joint's end
-point nor a ``boundingObject``): what another robot's camera draws of it beside its body.
+the ``Box``, ``Cylinder``, ``Capsule`` and ``Sphere`` shapes of each robot node's children and
+of its slots (an E-puck's ``turretSlot``, ``groundSensorsSlot`` and ``bodySlot``, each at the
+place the E-puck PROTO mounts it: :data:`SLOT_ORIGINS`), through ``Solid``, ``Transform``,
+``Pose``, ``Group`` and device nodes, not a joint's end point nor a ``boundingObject``: what
+another robot's camera draws of it beside its body.
 """
 
 from __future__ import annotations
@@ -28,6 +30,14 @@ Matrix = npt.NDArray[np.float64]
 
 #: Webots' ``Material.diffuseColor`` default (an ``Appearance`` whose material gives none).
 MATERIAL_DIFFUSE = (0.8, 0.8, 0.8)
+#: Where the E-puck PROTO (R2022a on) mounts a slot, in the robot's frame (m): its
+#: ``turretSlot`` 9.5 mm behind the centre on top of the turret, 48.6 mm up; its
+#: ``groundSensorsSlot`` 3 cm forward, 0.3 mm up (the core's import places the devices of these
+#: slots there too). Another slot, or another robot's, is at the robot's origin.
+SLOT_ORIGINS = {
+    ("E-puck", "turretSlot"): (-0.0095, 0.0, 0.0486),
+    ("E-puck", "groundSensorsSlot"): (0.03, 0.0, 0.0003),
+}
 #: A rotation axis at most this far from vertical (the sine of the angle) counts as upright.
 UPRIGHT = 1e-3
 
@@ -147,8 +157,13 @@ def robot_shapes(scene: Scene) -> dict[int, list[RobotShape]]:
 def _shapes_below(
     scene: Scene, robot: SceneNode, linear: Matrix, origin: Matrix
 ) -> Iterator[tuple[tuple[Matrix, Matrix], SceneNode]]:
-    """Each Shape among the robot's children, with its frame in the robot's floor frame."""
-    pending = [(child, linear, origin, 0) for child in reversed(robot.children)]
+    """Each Shape among the robot's children and in its slots, with its frame in the robot's
+    floor frame."""
+    held = [(child, origin) for child in robot.children]
+    for slot, nodes in robot.slots.items():
+        mount = np.asarray(SLOT_ORIGINS.get((robot.type_name, slot), (0.0, 0.0, 0.0)))
+        held.extend((node, linear @ mount + origin) for node in nodes)
+    pending = [(child, linear, at, 0) for child, at in reversed(held)]
     while pending:
         node, outer_linear, outer_origin, depth = pending.pop()
         if depth > 64:

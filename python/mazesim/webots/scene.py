@@ -113,6 +113,9 @@ class SceneNode:
         children: The nodes of its ``children`` field, for a grouping node, a plain robot or a
             device (:data:`CHILDREN_TYPES`); their ``translation`` and ``rotation`` are in its
             frame.
+        slots: The nodes of each of its fields whose name ends in ``Slot`` (an E-puck's
+            ``turretSlot``, ``groundSensorsSlot`` and ``bodySlot``), by field name, for a node
+            that is not the run's robot; their poses are in the slot's frame.
         nodes: The node of each of its fields that holds one node (a Shape's ``geometry`` and
             ``appearance``, an Appearance's ``material``, a Solid's ``boundingObject``).
         line: The line of its node type in the file (the import report's ``owners`` name the
@@ -131,6 +134,7 @@ class SceneNode:
     children: list[SceneNode] = field(default_factory=list)
     nodes: dict[str, SceneNode] = field(default_factory=dict)
     line: int = 0
+    slots: dict[str, list[SceneNode]] = field(default_factory=dict)
 
     @property
     def base_type(self) -> str:
@@ -328,7 +332,7 @@ def _scene(
             scene.traction_version = "2" if second else "1"
     scene.supervisor = bool(first_value(own, "supervisor", Field.flag))
     scene.synchronization = first_value(own, "synchronization", Field.flag) is not False
-    scene.lights = read_lights(every, scene.nue)
+    scene.lights = read_lights(tree, scene.nue)
     if (arguments := first_value(own, "controllerArgs", _itself)) is not None:
         strings = [t.text[1:-1] for t in arguments.tokens if t.kind == "string"]
         bracketed = bool(arguments.tokens) and arguments.tokens[0].kind == "["
@@ -536,7 +540,7 @@ def _scene_nodes(
         top: list[SceneNode] = []
         # (node, the list its SceneNode goes into, its children's SceneNodes and its
         # single-node fields' once visited)
-        Visited = tuple[list[SceneNode], list[tuple[str, SceneNode]]]
+        Visited = tuple[list[SceneNode], list[tuple[str, SceneNode]], list[tuple[str, SceneNode]]]
         pending: list[tuple[Node, list[SceneNode] | _Named, Visited | None]] = [
             (node, top, None) for node in reversed(nodes)
         ]
@@ -551,20 +555,25 @@ def _scene_nodes(
             if visited is None:
                 inner: list[SceneNode] = []
                 held: list[tuple[str, SceneNode]] = []
-                pending.append((node, into, (inner, held)))
+                slotted: list[tuple[str, SceneNode]] = []
+                pending.append((node, into, (inner, held, slotted)))
                 if node is not robot:
                     for name, single in reversed(_single_nodes(node)):
                         pending.append((single, _Named(held, name), None))
+                    for name, held_node in reversed(_slot_nodes(node)):
+                        pending.append((held_node, _Named(slotted, name), None))
                 if node.type_name in CHILDREN_TYPES:
                     listed = [
                         n for item in node.fields if item.name == "children" for n in item.nodes
                     ]
                     pending.extend((n, inner, None) for n in reversed(listed))
                 continue
-            children, singles = visited
+            children, singles, slotted_nodes = visited
             line = line_of(node.type_start)
             made[id(node)] = _scene_node(node, node is robot, children, nue, line)
             made[id(node)].nodes.update(singles)
+            for name, slotted_node in slotted_nodes:
+                made[id(node)].slots.setdefault(name, []).append(slotted_node)
             into.append(made[id(node)])
         return top
 
@@ -590,6 +599,17 @@ def _single_nodes(node: Node) -> list[tuple[str, Node]]:
         (item.name, item.nodes[0])
         for item in node.own_fields()
         if item.name != "children" and len(item.nodes) == 1 and not item.tokens
+    ]
+
+
+def _slot_nodes(node: Node) -> list[tuple[str, Node]]:
+    """The nodes of a node's fields whose name ends in ``Slot``, with the field's name, in file
+    order."""
+    return [
+        (item.name, held)
+        for item in node.own_fields()
+        if item.name.endswith("Slot")
+        for held in item.nodes
     ]
 
 

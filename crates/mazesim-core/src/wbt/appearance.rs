@@ -5,8 +5,9 @@
 //! Webots draws a `PBRAppearance` in its `baseColor` (default white) and an `Appearance` in its
 //! `Material`'s `diffuseColor` (default 0.8 grey; white, unlit, without a material); a node's
 //! `emissiveColor` adds to either (Webots' reference manual, PBRAppearance, Appearance and
-//! Material). A texture multiplies that colour by the image's, which the import does not read:
-//! a textured appearance gives no colour. An appearance PROTO (`BrushedAluminium`, `Roughcast`,
+//! Material). A texture multiplies that colour by the image's: a textured appearance gives the
+//! colour of its image's mean colour (which the caller reads and hands in) times its own
+//! colour, and none while the image is not given. An appearance PROTO (`BrushedAluminium`, `Roughcast`,
 //! `Parquetry`...) multiplies its texture by its `colorOverride` (Webots' guide, Appearances):
 //! the colour the instance writes there is taken, the texture counted as white; without one it
 //! gives no colour. A shape without a colour is drawn in the grey of its reflection factor.
@@ -26,10 +27,11 @@
 //! colour keeps the factor 1 of a white surface. A wall whose first visible shape is textured
 //! (an `ImageTexture` of a `PBRAppearance`'s `baseColorMap` or an `Appearance`'s `texture`) is
 //! listed with its texture ([`WallTexture`]): when the caller reads the image (as floor
-//! textures are read) and hands in its mean red, [`WbtImport::shade_walls`] gives the wall the
-//! factor of that red times the appearance's own (the texture's colour multiplies the
-//! appearance's, as Webots picks it), with the appearance's roughness; without the image the
-//! wall stays white.
+//! textures are read) and hands in its mean colour, [`WbtImport::shade_walls`] gives the wall
+//! the factor of that colour's red times the appearance's own (the texture's colour multiplies
+//! the appearance's, as Webots picks it), with the appearance's roughness, and the camera's
+//! colour of that mean colour times the appearance's; without the image the wall stays white
+//! and grey.
 
 use std::collections::BTreeMap;
 
@@ -62,6 +64,10 @@ pub struct WallTexture {
     /// The red the appearance gives a white texture (its colour's red times `1 -
     /// transparency`), which the image's mean red multiplies.
     pub red: f64,
+    /// The colour the appearance gives a white texture as a camera sees it (a
+    /// `PBRAppearance`'s `baseColor`; white for an `Appearance`, whose texture replaces its
+    /// material's diffuse colour), which the image's mean colour multiplies.
+    pub colour: [f64; 3],
     /// The appearance's roughness.
     pub roughness: f64,
     /// Files to look for, in order, as a floor texture's.
@@ -187,11 +193,17 @@ impl<'d> Importer<'d> {
         };
         let urls = self.image_texture_urls(appearance, field)?;
         let (red, roughness) = self.appearance_red(appearance);
+        let colour = if field == "baseColorMap" {
+            self.vector(appearance, "baseColor", [1.0; 3])
+        } else {
+            [1.0; 3]
+        };
         let owner = self.label(shape);
         self.wall_textures.push(WallTexture {
             urls,
             owner,
             red,
+            colour,
             roughness,
             candidates: Vec::new(),
         });
@@ -311,28 +323,34 @@ impl<'d> Importer<'d> {
 }
 
 impl WbtImport {
-    /// Gives each textured wall the reflection factor of its texture's image, given as the
-    /// image's mean red in [0, 1] keyed by the candidate file it was read from (the first
-    /// candidate found counts): `f = 0.2 + 0.8 (mean red x the appearance's red) (1 - 0.5
-    /// roughness)`. A wall whose texture has no image stays white. Call it once, after the
-    /// import.
-    pub fn shade_walls(&mut self, mean_reds: &BTreeMap<String, f64>) {
-        let factors: Vec<Option<f64>> = self
+    /// Gives each textured wall the look of its texture's image, given as the image's mean
+    /// colour (red, green, blue in [0, 1]) keyed by the candidate file it was read from (the
+    /// first candidate found counts): the reflection factor `f = 0.2 + 0.8 (mean red x the
+    /// appearance's red) (1 - 0.5 roughness)` and the colour a camera sees, the mean colour
+    /// times the appearance's. A wall whose texture has no image stays white (and grey to a
+    /// camera). Call it once, after the import.
+    pub fn shade_walls(&mut self, mean_colours: &BTreeMap<String, [f64; 3]>) {
+        let shades: Vec<Option<Look>> = self
             .wall_textures
             .iter()
-            .map(|texture| {
-                let mean = texture.candidates.iter().find_map(|c| mean_reds.get(c))?;
-                Some(reflection_factor(
-                    mean * texture.red,
-                    texture.roughness,
-                    0.0,
-                ))
+            .enumerate()
+            .map(|(index, texture)| {
+                let mean = texture
+                    .candidates
+                    .iter()
+                    .find_map(|c| mean_colours.get(c))?;
+                let colour = [0, 1, 2].map(|i| (mean[i] * texture.colour[i]).clamp(0.0, 1.0));
+                Some(Look {
+                    colour: colour.iter().all(|c| c.is_finite()).then_some(colour),
+                    reflectance: reflection_factor(mean[0] * texture.red, texture.roughness, 0.0),
+                    texture: Some(index),
+                })
             })
             .collect();
         let looks = self.obstacle_looks.iter_mut().chain(&mut self.sensed_looks);
         for look in looks {
-            if let Some(Some(factor)) = look.texture.and_then(|k| factors.get(k)) {
-                look.reflectance = *factor;
+            if let Some(Some(shade)) = look.texture.and_then(|k| shades.get(k)) {
+                *look = *shade;
             }
         }
     }
@@ -385,15 +403,20 @@ mod tests {
         assert_eq!((texture.red, texture.roughness), (0.5, 1.0));
         // Without its image the wall is white, as before.
         assert_eq!(w.obstacle_looks[0].reflectance, 1.0);
-        let other = [("elsewhere.png".to_string(), 0.0)].into_iter().collect();
+        assert_eq!(w.obstacle_looks[0].colour, None);
+        let other = [("elsewhere.png".to_string(), [0.0; 3])]
+            .into_iter()
+            .collect();
         w.shade_walls(&other);
         assert_eq!(w.obstacle_looks[0].reflectance, 1.0);
-        let found = [("textures/bricks.png".to_string(), 0.8)]
+        let found = [("textures/bricks.png".to_string(), [0.8, 0.4, 0.2])]
             .into_iter()
             .collect();
         w.shade_walls(&found);
         // 0.2 + 0.8 * (0.8 * 0.5) * (1 - 0.5 * 1).
         assert!((w.obstacle_looks[0].reflectance - 0.36).abs() < 1e-12);
+        // The camera sees the image's mean colour times the base colour (0.5 1 1).
+        assert_eq!(w.obstacle_looks[0].colour, Some([0.4, 0.4, 0.2]));
         assert!((w.to_spec("textured").walls[0].reflectance.0 - 0.36).abs() < 1e-12);
     }
 

@@ -405,7 +405,7 @@ impl<'d> Importer<'d> {
         } else {
             let label = self.label(node);
             let what = if kind == "Shape" || kind == "CadShape" {
-                "a visual node, not simulated"
+                "a visual node: other robots' cameras see it (a Box, Cylinder, Capsule or Sphere), nothing else simulates it"
             } else {
                 "not a device mazesim lists; not imported"
             };

@@ -239,8 +239,10 @@ impl FloorTexture {
 
 impl WbtImport {
     /// Paints the floor textures whose images are given, keyed by the candidate file each was
-    /// read from (the first candidate found counts); a texture with no image, or one that cannot
-    /// be painted, gets a warning naming the files looked for. Call it once, after the import.
+    /// read from (the first candidate found counts); one that cannot be painted gets a warning.
+    /// A texture with no image is left out: the caller, which looks for every texture's image
+    /// (the floor's and the walls'), says which files it looked for. Call it once, after the
+    /// import.
     pub fn paint_floor(&mut self, images: &BTreeMap<String, GreyImage>) {
         // Texture paint goes under the marks of visual-only shapes already painted.
         let marks = std::mem::take(&mut self.paint);
@@ -249,24 +251,14 @@ impl WbtImport {
                 .candidates
                 .iter()
                 .find_map(|c| images.get(c).map(|image| (c, image)));
-            match found {
-                Some((file, image)) => match texture.paint(image) {
+            if let Some((file, image)) = found {
+                match texture.paint(image) {
                     Ok(paint) => self.paint.extend(paint),
                     Err(why) => self.warnings.push(format!(
                         "{}: floor texture {file}: not painted: {why}",
                         texture.owner
                     )),
-                },
-                None => self.warnings.push(format!(
-                    "{}: floor texture {:?} not found (looked for {}): the floor is left bare",
-                    texture.owner,
-                    texture.urls.first().map_or("", String::as_str),
-                    if texture.candidates.is_empty() {
-                        "no file: the url is empty".to_string()
-                    } else {
-                        texture.candidates.join(", ")
-                    }
-                )),
+                }
             }
         }
         self.paint.extend(marks);
@@ -829,19 +821,17 @@ Solid {{ translation 0.3 0.25 0 children [ Solid {{ children [ Shape {{
     }
 
     #[test]
-    fn a_missing_image_is_a_warning_naming_the_files() {
+    fn a_missing_image_leaves_the_floor_bare_and_lists_the_files_to_look_for() {
         let mut import = WbtImport::from_text(
             "#VRML_SIM R2023b utf8\nRectangleArena { floorAppearance PBRAppearance { baseColorMap ImageTexture { url [\"textures/track.png\"] } } }\n",
             "/worlds/line.wbt",
         )
         .unwrap();
         assert_eq!(import.floor_textures.len(), 1);
+        assert!(import.floor_textures[0]
+            .candidates
+            .contains(&"/worlds/textures/track.png".to_string()));
         import.paint_floor(&BTreeMap::new());
-        let warning = import.warnings.last().unwrap();
-        assert!(
-            warning.contains("/worlds/textures/track.png") && warning.contains("not found"),
-            "{warning}"
-        );
         assert!(import.paint.is_empty());
     }
 }
