@@ -19,7 +19,7 @@ caller's next command answers that state. Nothing here needs ROS.
 from __future__ import annotations
 
 from mazesim._core import Simulator
-from mazesim.errors import InvalidArgumentError
+from mazesim.errors import InvalidArgumentError, _shown
 
 __all__ = ["RESET_SIMULATION", "RESET_WORLD", "RESETS", "EpisodeResets"]
 
@@ -57,6 +57,6 @@ class EpisodeResets:
             self.simulator.reset_scene()
         else:
             raise InvalidArgumentError(
-                f"expected a reset, one of {', '.join(RESETS)}; found {kind!r}"
+                f"expected a reset, one of {', '.join(RESETS)}; found {_shown(kind)}"
             )
         self.applied[kind] += 1
