@@ -110,7 +110,12 @@ fn a_known_robot_proto_without_a_controller_field_is_a_robot() {
     assert_eq!(w.robot_line, Some(3));
     assert!(warned(
         &w,
-        "line 2: Pioneer3dx: a robot that is not an e-puck (Pioneer3dx): its controller runs, its body does not move; it has no collision shape"
+        "line 2: Pioneer3dx: a robot that is not an e-puck (Pioneer3dx): its controller runs, its body does not move; its collision shapes are static obstacles"
+    ));
+    // Its shapes are inside its PROTO: its published footprint stands for them.
+    assert!(warned(
+        &w,
+        "line 2: Pioneer3dx: its collision shapes are inside the Pioneer3dx PROTO: it stands as a disc"
     ));
     assert!(!warned(&w, "in its place"), "{:?}", w.warnings);
     let alone =
