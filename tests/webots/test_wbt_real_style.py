@@ -214,12 +214,18 @@ def test_an_image_that_cannot_be_decoded_is_a_warning(tmp_path: Path) -> None:
 
 def test_a_robot_that_is_not_an_e_puck_is_replaced_with_a_warning(tmp_path: Path) -> None:
     thymio = 'Thymio2 {\n  translation 0.1 -0.1 0\n  rotation 0 0 1 3.14159\n  controller "x"\n}\n'
-    _, report = import_wbt(write_world(tmp_path, thymio))
+    world, report = import_wbt(write_world(tmp_path, thymio))
     assert report["robot_model"] == "Thymio2"
     assert report["robot_profile"] == "e-puck"
     assert report["robot"] == pytest.approx({"x": 0.1, "y": -0.1, "yaw": 3.14159})
-    warning = next(w for w in report["warnings"] if "Thymio2" in w)
-    assert "not an e-puck" in warning and "e-puck in its place" in warning
+    warning = next(w for w in report["warnings"] if "Thymio2" in w and "not an e-puck" in w)
+    assert "e-puck in its place" in warning
+    # The footprint a library robot stands as in a whole-world run is not a wall of the run of
+    # one controller: the e-puck in its place does not start inside it.
+    (tmp_path / "epuck").mkdir()
+    epuck = 'E-puck {\n  translation 0.1 -0.1 0\n  rotation 0 0 1 3.14159\n  controller "x"\n}\n'
+    walls_of_an_e_puck_world, _ = import_wbt(write_world(tmp_path / "epuck", epuck))
+    assert np.array_equal(world.wall_boxes(), walls_of_an_e_puck_world.wall_boxes())
 
 
 def test_a_floor_proto_tiles_its_texture(tmp_path: Path) -> None:
