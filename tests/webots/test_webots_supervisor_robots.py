@@ -65,13 +65,13 @@ def test_imported_e_pucks_run_their_controllers_and_removed_robots_end(
     assert b_log["camera_width"] == 52 and "compass" not in b_log["devices"]
     assert a_log["first_step_time"] == pytest.approx((IMPORT_STEP + 1) * step_s)
     # A removed robot's controller is answered the end at its next step, as after a
-    # supervisor's quit (that step returns without the world advancing, the one after it -1),
-    # and its path ends there.
-    assert b_log["ended"] and b_log["steps"] == REMOVE_STEP - IMPORT_STEP + 1
+    # supervisor's quit: that step returns -1 (no step in which no time passes), and its path
+    # ends there.
+    assert b_log["ended"] and b_log["steps"] == REMOVE_STEP - IMPORT_STEP
     assert new_b.removed_s == pytest.approx(REMOVE_STEP * step_s)
     assert len(new_b.xs) == REMOVE_STEP - IMPORT_STEP + 1
     first_log = log(tmp_path, "first")
-    assert first_log["ended"] and first_log["steps"] == REMOVE_FIRST_STEP + 1
+    assert first_log["ended"] and first_log["steps"] == REMOVE_FIRST_STEP
     assert first.removed_s == pytest.approx(REMOVE_FIRST_STEP * step_s)
     assert spawner.removed_s is None and new_a.removed_s is None
 
