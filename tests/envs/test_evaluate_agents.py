@@ -77,3 +77,9 @@ def test_a_function_of_another_form_is_refused_naming_the_forms() -> None:
     assert "needs 3 arguments" in str(caught.value)
     with pytest.raises(InvalidArgumentError, match="make an object with act"):
         evaluate(TASK, lambda names, size: None, **SHORT)
+
+
+@pytest.mark.parametrize("task", ["explore", "mazesim/NoSuchTask-v0", "gymnasium/CartPole"])
+def test_an_unknown_task_is_refused_naming_the_tasks(task: str) -> None:
+    with pytest.raises(InvalidArgumentError, match="expected a registered task id such as"):
+        evaluate(task, lambda observation: 0, episodes=1)

@@ -315,7 +315,7 @@ class _FunctionAgent:
         if isinstance(action, tuple) and len(action) == 2:
             raise InvalidArgumentError(
                 f"evaluate: expected the agent function to return an action, found a pair "
-                f"{_short(action)}, as Stable-Baselines3's predict returns (action, state): "
+                f"{_shown(action)}, as Stable-Baselines3's predict returns (action, state): "
                 f"pass the model itself (evaluate(task, model)), which is driven with "
                 f"model.predict(observation, deterministic=True)[0]"
             )
@@ -338,11 +338,6 @@ _AGENT_FORMS = (
     "Stable-Baselines3 model (its predict, deterministic); or a class or function called as "
     "agent(observation_names, maze_size) that makes one such object per episode"
 )
-
-
-def _short(value: object) -> str:
-    text = repr(value)
-    return text if len(text) <= 80 else text[:77] + "..."
 
 
 def _required_positional(function: Callable[..., Any]) -> int | None:
@@ -376,7 +371,7 @@ def _episode_agents(
             return [_ModelAgent(owner)] * episodes  # type: ignore[arg-type]
     if not callable(agent):
         raise InvalidArgumentError(
-            f"evaluate: expected as the agent {_AGENT_FORMS}; found {_short(agent)}"
+            f"evaluate: expected as the agent {_AGENT_FORMS}; found {_shown(agent)}"
         )
     needed = _required_positional(agent)
     if isinstance(agent, type):  # a class is made once per episode
@@ -386,14 +381,14 @@ def _episode_agents(
         return [_FunctionAgent(agent)] * episodes
     elif needed not in (None, 2):
         raise InvalidArgumentError(
-            f"evaluate: expected as the agent {_AGENT_FORMS}; found {_short(agent)}, which needs "
+            f"evaluate: expected as the agent {_AGENT_FORMS}; found {_shown(agent)}, which needs "
             f"{needed} arguments"
         )
     made = [agent(names, size) for _ in range(episodes)]
     if not callable(getattr(made[0], "act", None)):
         raise InvalidArgumentError(
             f"evaluate: expected agent(observation_names, maze_size) to make an object with "
-            f"act(observation) -> action, found {_short(made[0])}"
+            f"act(observation) -> action, found {_shown(made[0])}"
         )
     return made
 
@@ -423,6 +418,13 @@ def evaluate(
         raise InvalidArgumentError(
             f"expected episodes to be a whole number of at least 1 (one held-out environment "
             f"each), found {_shown(episodes)}"
+        )
+    if not isinstance(task, str) or task not in gymnasium.registry:
+        from mazesim.envs.tasks import TASKS
+
+        raise InvalidArgumentError(
+            f"evaluate: expected a registered task id such as "
+            f"{', '.join(t.env_id for t in TASKS)}; found {_shown(task)}"
         )
     size = (5, 5) if maze_size is None else (int(maze_size[0]), int(maze_size[1]))
     envs = gymnasium.make_vec(
