@@ -205,6 +205,12 @@ class Fleet:
         self._resets: list[WorldReset] = [WorldReset() for _ in simulators]
         #: Whether a supervisor asked for a reset, which the world applies at the step's end.
         self.reset_asked = False
+        #: Whether a supervisor asked for the world to be reloaded (:meth:`reload_world`),
+        #: which the world does before its next step.
+        self.reload_asked = False
+        #: Each robot's ``controller`` field as the world file gives it, which a reload
+        #: brings back.
+        self._file_controllers = [robot.get("controller") for robot in robots]
         #: The robots imported, and removed, since the run last took note (their controllers
         #: start, and end).
         self.joined: list[int] = []
@@ -303,6 +309,28 @@ class Fleet:
         if index not in self.restarts:
             self.restarts.append(index)
         return True
+
+    def reload_world(self) -> None:
+        """Notes a supervisor's ``worldReload``: before the next step the world is put back as
+        its file has it (:meth:`reset_scene`, the supervisor's ``controller`` and
+        ``customData`` writes undone) and every robot's controller, the caller's too, ends
+        (its ``Robot.step`` returns -1) and starts again on a clock back at 0, as Webots
+        reloads the world file and restarts every controller process."""
+        self.reload_asked = True
+
+    def reload_scene(self) -> list[int]:
+        """Does the reload :meth:`reload_world` asked for; returns the robots whose controllers
+        start again (every robot present after the reset)."""
+        self.reload_asked = False
+        self.reset_scene()
+        for index, controller in enumerate(self._file_controllers):
+            if index not in self.gone and controller is not None:
+                self._robots[index] = {**self._robots[index], "controller": controller}
+        self._custom_data.clear()
+        self._fields.clear()
+        here = [i for i in range(len(self._simulators)) if i not in self.gone]
+        self.restarts = here
+        return here
 
     def change_controller(self, index: int, name: str) -> bool:
         """Gives robot ``index`` the controller ``name``, as a supervisor's write of its node's
@@ -982,7 +1010,8 @@ def _lockstep(
                     break
                 for ready in wait(world.pending(), timeout=_POLL_SECONDS):
                     world.serve(ready)
-                    if joined is not None and (fleet.joined or fleet.left or fleet.restarts):
+                    changed = fleet.joined or fleet.left or fleet.restarts or fleet.reload_asked
+                    if joined is not None and changed:
                         world.regroup(processes, joined)
                 wheels = world.wheels
                 if wheels and (world.over or world.live <= set(wheels)):
@@ -1062,6 +1091,12 @@ class _Pipes:
         next step on, the world waiting for it), ends those of the robots it removed, and
         restarts those it asked to: the running process is answered the end at its step, as a
         removed robot's, and a new one starts at once with what is left of the run's time."""
+        if self.fleet.reload_asked:
+            self.fleet.reload_scene()
+            self.fleet.note_poses()
+            for index in self.fleet.restarts:
+                x, y, _ = self.simulators[index].pose
+                self.runs[index].xs[-1], self.runs[index].ys[-1] = float(x), float(y)
         for index in self.fleet.restarts:
             if index in self.fleet.left:
                 continue

@@ -934,8 +934,17 @@ class Supervisor(Robot):
         """Accepted; there is no 3D view to draw labels on."""
 
     def worldReload(self) -> None:
-        """Resets the simulation (the world is the same)."""
-        self.simulationReset()
+        """Reloads the world, as Webots does: in a run of the whole world, before the next step
+        the world is put back as its file has it (as :meth:`simulationReset` puts it, with the
+        ``controller`` and ``customData`` fields a supervisor wrote back at the file's values)
+        and every controller, this one too, is ended (its next ``step`` returns -1) and started
+        again, on a clock back at 0. In a run of one controller, it resets the simulation and
+        the controller goes on."""
+        fleet = self._simulation.fleet
+        if fleet is not None:
+            fleet.reload_world()
+        else:
+            self.simulationReset()
 
     def worldSave(self, filename: str | None = None) -> bool:
         """Writes the world as it stands to ``filename`` (a ``.wbt`` path, relative to the
