@@ -63,6 +63,9 @@ class MultiRobotParallelEnv(ParallelEnv[str, Observation, npt.NDArray[np.float32
         )
         self.possible_agents = list(self.batch.agents)
         self.agents: list[str] = []
+        #: Whether the env has been reset: a step with no live agent after an episode answers
+        #: with nothing, one before the first reset raises.
+        self._was_reset = False
         width = self.batch.observation_width
         limit = np.float32(np.finfo(np.float32).max)
         self._observation_space = gymnasium.spaces.Box(-limit, limit, (width,), np.float32)
@@ -95,6 +98,7 @@ class MultiRobotParallelEnv(ParallelEnv[str, Observation, npt.NDArray[np.float32
         check_options(options)
         observations, _ = self.batch.reset(seed)
         self.agents = list(self.possible_agents)
+        self._was_reset = True
         self._renderer = None
         return self._per_agent(observations[0]), {a: {} for a in self.agents}
 
@@ -110,13 +114,17 @@ class MultiRobotParallelEnv(ParallelEnv[str, Observation, npt.NDArray[np.float32
         """Steps every live agent with its action (an agent without one, or an action of an
         agent the env does not have: an error; an ended agent's action is left out).
 
+        Once every agent has ended, a step changes nothing and returns five empty dicts, as
+        PettingZoo's own parallel envs (``aec_to_parallel``) do, which wrappers that keep
+        ended agents in, such as SuperSuit's ``black_death_v3``, step to learn that the
+        episode is over.
+
         Raises:
-            ResetNeededError: No agent is live (before the first ``reset``, or after the episode
-                ended).
+            ResetNeededError: The env was never reset.
             EnvClosedError: The env is closed.
         """
         self._check_open()
-        if not self.agents:
+        if not self._was_reset:
             raise ResetNeededError("expected reset() before step(): no agent is live")
         if not isinstance(actions, Mapping):
             raise InvalidActionError(
@@ -128,6 +136,8 @@ class MultiRobotParallelEnv(ParallelEnv[str, Observation, npt.NDArray[np.float32
                 f"expected actions of the agents {self.possible_agents}, found unknown agents "
                 f"{unknown}"
             )
+        if not self.agents:
+            return {}, {}, {}, {}, {}
         missing = [a for a in self.agents if a not in actions]
         if missing:
             raise InvalidActionError(f"expected an action for every live agent, missing {missing}")
