@@ -100,6 +100,7 @@ PAGE_CONSTANTS: dict[str, dict[str, str]] = {
         "5 s": "the lockstep bridge's wait before it sends the reset state again",
         "1 s": "the lockstep bridge's wait after that before its clock runs on its own",
         "6.4 s": "the argument of the page's run_until example",
+        "0.1 s": "the period of the tests' and stand-ins' nodes on a timer of simulated time",
     },
     "webots.md": {
         "1 %": "the LightSensor PROTO table's noise (Webots' source)",

@@ -18,6 +18,9 @@ environment) and read its standard output.
                                        publish each command, then rospy.Rate(1 / PERIOD).sleep()
                                        on simulated time, the Rate made once the reset state
                                        and a first /clock have come (a controller on a rate)
+    ros_probe.py drive-sleeping PERIOD COMMANDS_JSON
+                                       the same with rospy.sleep(PERIOD) after each command: its
+                                       times count from whenever the sleep starts
     ros_probe.py listen SECONDS        record what the bridge publishes for SECONDS (wall clock)
     ros_probe.py count TOPIC N         receive N messages of TOPIC (e.g. from rosbag play)
     ros_probe.py count-with-clock TOPIC N
@@ -277,10 +280,13 @@ def standard(twists: list[list[float]]) -> dict[str, Any]:
         }
 
 
-def drive_at_rate(period: float, commands: list[dict[str, Any]]) -> dict[str, Any]:
+def drive_at_rate(
+    period: float, commands: list[dict[str, Any]], sleeping: bool = False
+) -> dict[str, Any]:
     """Publishes each command, then sleeps on a ``rospy.Rate`` of simulated time, as a
-    controller commanding at a rate does; returns once the last command's hold is over (the
-    clock at the rate's next tick, every state of it received)."""
+    controller commanding at a rate does (``sleeping``: ``rospy.sleep(period)``, counted from
+    whenever it starts); returns once the last command's hold is over (the clock at the rate's
+    next tick, every state of it received)."""
     if rospy.rostime.is_wallclock():
         raise SystemExit("expected /use_sim_time: rospy.Rate would not count simulated time")
     motor = publisher("motor", Float64MultiArray)
@@ -295,7 +301,10 @@ def drive_at_rate(period: float, commands: list[dict[str, Any]]) -> dict[str, An
     rate = rospy.Rate(1.0 / period)
     for command in commands:
         motor.publish(Float64MultiArray(data=command["data"]))
-        rate.sleep()
+        if sleeping:
+            rospy.sleep(period)
+        else:
+            rate.sleep()
     # Every state up to the clock's now: the reset state and one a control step.
     step_ns = int(round(float(rospy.get_param("control_step_ms")) * 1e6))
     steps = round(rospy.get_rostime().to_nsec() / step_ns)
@@ -315,9 +324,11 @@ def main() -> int:
                     0.5 if mode == "drive-after-sleep" else 0.0,
                     10 if mode == "drive-skipping" else 0,
                 )
-        elif mode == "drive-at-rate":
+        elif mode in ("drive-at-rate", "drive-sleeping"):
             with open(sys.argv[3]) as handle:
-                result = drive_at_rate(float(sys.argv[2]), json.load(handle))
+                result = drive_at_rate(
+                    float(sys.argv[2]), json.load(handle), mode == "drive-sleeping"
+                )
         elif mode == "listen":
             recorder = Recorder(STATE_TOPICS)
             time.sleep(float(sys.argv[2]))

@@ -3,10 +3,12 @@ that went unanswered goes out again, and how long a command holds for a node on 
 
 from __future__ import annotations
 
+import math
+
 import pytest
 
 from mazesim.errors import InvalidArgumentError
-from mazesim.ros.lockstep import RESEND_S, TimerHold, UnansweredState
+from mazesim.ros.lockstep import RESEND_S, CommandDeadline, TimerHold, UnansweredState
 
 STEP_NS = 32_000_000
 
@@ -116,3 +118,30 @@ def test_a_hold_from_the_rate_s_origin_ends_where_rospy_rate_wakes(period_s: flo
     assert ends == rate_wakes(period_s, 1, ends[-1] + 1)
     if period_s == 0.1:  # the tick at 0.8 s + 1 ns is the state at 0.832 s
         assert 800_000_000 not in ends and 832_000_000 in ends
+
+
+def test_a_command_deadline_steps_once_it_passes_then_every_control_step() -> None:
+    deadline = CommandDeadline(0.2, 0.032)
+    assert deadline.wait(10.0) == math.inf and not deadline.due(10.0)  # no command yet
+    deadline.commanded(10.0)
+    assert not deadline.due(10.19) and deadline.wait(10.1) == pytest.approx(0.1)
+    assert deadline.due(10.201)
+    notice = deadline.stepped(10.201)
+    assert notice is not None and "--command-deadline" in notice
+    # Then in real time, a control step apart, said once.
+    assert not deadline.due(10.231) and deadline.due(10.2325)
+    assert deadline.stepped(10.2325) is None and deadline.steps == 2
+    deadline.commanded(11.0)  # a command came: the deadline again
+    assert not deadline.due(11.1) and deadline.due(11.201)
+
+
+def test_no_command_deadline_never_steps() -> None:
+    deadline = CommandDeadline(0.0, 0.032)
+    deadline.commanded(1.0)
+    assert not deadline.active and not deadline.due(1e9) and deadline.wait(1.0) == math.inf
+
+
+@pytest.mark.parametrize("seconds", [-1.0, math.nan, math.inf])
+def test_a_command_deadline_that_is_no_time_is_refused(seconds: float) -> None:
+    with pytest.raises(InvalidArgumentError, match="expected a command deadline in seconds"):
+        CommandDeadline(seconds, 0.032)

@@ -762,3 +762,40 @@ def test_a_controller_at_a_rospy_rate_drives_in_lockstep_with_command_period(
     assert len(seen["data"]["pose"]) == sum(holds) + 1
     assert seen["data"]["pose"] == expected["pose"]  # bit for bit
     assert seen["data"]["sensors"] == expected["sensors"]
+
+
+@needs_ros
+def test_a_controller_sleeping_after_each_command_drives_with_a_command_deadline(
+    master: LocalMaster, tmp_path: Path
+) -> None:
+    # A controller that sleeps 0.1 s of simulated time after each command (rospy.sleep, counted
+    # from whenever it starts, so no period the bridge is given foresees its ticks) stepped the
+    # bridge once and slept on a clock that moved on commands only. With --command-deadline the
+    # bridge steps on with the last command held once none has come within the deadline.
+    master.set_param("/use_sim_time", True)
+    commands = motor_commands(10, seed=4)
+    path = tmp_path / "commands.json"
+    path.write_text(json.dumps(commands))
+    spawn_bridge(master, "--seed", "4", "--command-deadline", "0.2")
+    seen = run_probe(master, "drive-sleeping", "0.1", str(path))
+    poses = seen["data"]["pose"]
+    # Each sleep of 0.1 s spans at least three 32 ms steps: some steps came without a command.
+    assert len(poses) >= 3 * len(commands)
+    # Every step is the in-process step with the last command held: each recorded pose is the
+    # simulator's after one step with the command before, or with the next command.
+    simulator = mazesim.Simulator(mazesim.load_world("seed-maze"), robot="e-puck", seed=4)
+    assert topics.pose_values(simulator) == poses[0]
+    speeds = [topics.motor_command(command["data"]) for command in commands]
+    current = -1
+    for pose in poses[1:]:
+        before = simulator.snapshot()
+        if current >= 0:
+            simulator.step(*speeds[current])
+            if topics.pose_values(simulator) == pose:
+                continue
+            simulator.restore(before)
+        current += 1
+        assert current < len(speeds), pose
+        simulator.step(*speeds[current])
+        assert topics.pose_values(simulator) == pose  # bit for bit
+    assert current == len(speeds) - 1

@@ -1,6 +1,6 @@
 """The ROS 1 bridge's reset services, ``/gazebo/reset_simulation`` and ``/gazebo/reset_world``
-(``std_srvs/Empty``, as Gazebo's node offers them), called by a rospy node as Gazebo's users
-call them: ``rospy.wait_for_service``, then a ``ServiceProxy``."""
+(``std_srvs/Empty``, as Gazebo's node offers them, and Stage's ``/reset_positions``), called by a
+rospy node as Gazebo's users call them: ``rospy.wait_for_service``, then a ``ServiceProxy``."""
 
 from __future__ import annotations
 
@@ -45,7 +45,8 @@ def pose_at(step):
 def send(left, right):
     motor.publish(Float64MultiArray(data=[left, right]))
 
-for name in ('/gazebo/reset_simulation', '/gazebo/reset_world'):
+# Stage's /reset_positions too, as nodes written for stage_ros wait for it.
+for name in ('/gazebo/reset_simulation', '/gazebo/reset_world', '/reset_positions'):
     rospy.wait_for_service(name, timeout=300)
 def reset(name):
     rospy.ServiceProxy('/gazebo/' + name, Empty)()

@@ -178,7 +178,7 @@ def test_a_node_restarted_while_the_bridge_runs_gets_the_last_state_again() -> N
     assert first == f"answered:{1}..{9 * 32_000_000}"
     assert second == f"answered:{10 * 32_000_000}..{19 * 32_000_000}"
     assert "stopped after 20 steps" in result.stderr
-    assert "a command writer matched after the last state" in result.stderr
+    assert "a command writer or state reader matched after the last state" in result.stderr
 
 
 def test_a_robot_s_node_restarted_gets_its_robot_s_state_again_and_no_other_robot_s(
@@ -309,3 +309,50 @@ def test_a_node_on_a_timer_of_simulated_time_drives_in_lockstep_with_its_period(
     )
     assert "stopped after 90 steps" in result.stderr
     assert "publishing" not in result.stderr  # nothing went out twice
+
+
+def test_a_node_timing_itself_from_its_first_clock_drives_with_a_command_deadline() -> None:
+    # A node that commands every 0.1 s of simulated time counted from the first /clock it reads
+    # (not from the multiples of 0.1 s, as rcl's timers, so --command-period cannot foresee its
+    # ticks) stepped the bridge once and waited for time that moved on commands only, while the
+    # bridge waited for its command. With --command-deadline the bridge steps on, the last
+    # command held, once no command has come within the deadline, as a simulator whose clock
+    # runs (Gazebo, Webots' ROS 2 driver) does.
+    node = [sys.executable, "-c", _FIRST_CLOCK_TIMER, "8"]
+    result = run_in_namespace([_bridge("humble", 0, "--command-deadline", "0.2")], node, grace=1.0)
+    assert result.returncode == 0, result.stderr
+    ticks = [int(stamp) for stamp in result.stdout.split()[1:]]
+    assert result.stdout.split()[0] == "commands:8" and len(ticks) == 8, result.stdout
+    # Each command at a later /clock, every /clock a whole number of control steps.
+    assert all(a < b for a, b in zip(ticks, ticks[1:])), ticks
+    assert all(tick % 32_000_000 == 0 for tick in ticks), ticks
+    assert "no command 0.2 s after a state; stepping with the last command held" in result.stderr
+    assert re.search(r"\d+ steps without a command \(--command-deadline\)", result.stderr)
+
+
+#: Commands every 0.1 s of simulated time counted from the first /clock it reads, as many times as
+#: its argument says, each a twist on /cmd_vel; prints how many and the /clock of each.
+_FIRST_CLOCK_TIMER = """
+import sys, time
+from mazesim.ros2 import cdr
+from mazesim.ros2.node import Node
+from mazesim.ros2.qos import CLOCK, COMMAND
+node = Node("first_clock_timer")
+clock = node.reader("/clock", "rosgraph_msgs/msg/Clock", CLOCK)
+cmd_vel = node.writer("/cmd_vel", "geometry_msgs/msg/Twist", COMMAND)
+node.announce()
+twist = cdr.encode_twist((0.05, 0.0, 0.0), (0.0, 0.0, 0.3))
+first, now, sent = None, 0, []
+deadline = time.monotonic() + 300  # a ceiling for a hang: the loop ends on its count of ticks
+while len(sent) < int(sys.argv[1]) and time.monotonic() < deadline:
+    for data in clock.take():
+        now = cdr.decode_clock(data)
+        first = now if first is None else first
+    if first is not None and now >= first + (len(sent) + 1) * 100_000_000:
+        sent.append(now)
+        cmd_vel.publish(twist)
+    time.sleep(0.002)
+cmd_vel.dds.wait_for_acks(120 * 10**9)  # the last command reaches the bridge before this ends
+print(f"commands:{len(sent)}", *sent)
+sys.exit(0 if len(sent) == int(sys.argv[1]) else 1)
+"""

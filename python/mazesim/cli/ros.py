@@ -111,6 +111,7 @@ def _run_bridge(args: argparse.Namespace) -> int:
         "noise": False if args.no_noise else None,
         "stop_at_goal": True if args.stop_at_goal else None,
         "command_period": args.command_period,
+        "command_deadline": args.command_deadline,
         "bag": args.bag,
     }
     return run_bridge(options, args.remappings, args.name)
@@ -220,6 +221,16 @@ COMMANDS = (
                 "with this period (rospy.Rate(10): 0.1): each command holds, whole steps, "
                 "until the clock reaches the rate's next tick (default: 0, a step per "
                 "command)",
+            ),
+            option(
+                "--command-deadline",
+                type=non_negative_seconds,
+                metavar="S",
+                help="lockstep: when no command comes S wall-clock seconds after a state, step "
+                "with the last command held, then on in real time until one comes, for a "
+                "controller that waits for simulated time the bridge cannot foresee (a "
+                "rospy.Timer or rospy.sleep counted from a later time) (default: 0, wait for "
+                "each command)",
             ),
             option(
                 "--bag",

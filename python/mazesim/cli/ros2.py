@@ -104,6 +104,10 @@ def _command_period(text: str) -> float:
     return _non_negative(text, "a timer period in seconds (0: a step per command)")
 
 
+def _command_deadline(text: str) -> float:
+    return _non_negative(text, "a deadline in wall-clock seconds (0: wait for each command)")
+
+
 def _period_ms(text: str) -> float:
     return _non_negative(text, "a timer period in ms (0: answer each reading)")
 
@@ -162,6 +166,7 @@ def _run_bridge(args: argparse.Namespace) -> int:
             frame_prefix=args.frame_prefix,
             namespace=_bridge_namespace(args),
             command_period=args.command_period,
+            command_deadline=args.command_deadline,
             ros_arguments=args.ros_arguments,
         )
     )
@@ -288,6 +293,16 @@ COMMANDS = (
                 "with this period in seconds (create_timer(0.1, ...) with use_sim_time): each "
                 "command holds, whole steps, until the clock reaches the timer's next tick "
                 "(default: 0, a step per command)",
+            ),
+            option(
+                "--command-deadline",
+                type=_command_deadline,
+                default=0.0,
+                help="lockstep: when no command comes this many wall-clock seconds after a "
+                "state, step with the last command held, then on in real time until one comes, "
+                "for a node that waits for simulated time the bridge cannot foresee (a timer "
+                "counted from its first /clock, a sleep after each command) (default: 0, wait "
+                "for each command)",
             ),
             *_COMMON,
         ),

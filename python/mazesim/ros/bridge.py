@@ -22,8 +22,12 @@ A ``cmd_vel`` twist is a command like the others. It runs in one of two modes:
   gets ``command_period``, the rate's period: each command holds over whole control steps until
   the clock reaches the rate's next tick (:class:`~mazesim.ros.lockstep.TimerHold`, the rule of
   both bridges; the state before the first step is stamped 1 ns, never 0, as ROS 2's bridge
-  stamps it, and a ``rospy.Rate`` made then counts from it). Run exactly one controller in this
-  mode.
+  stamps it, and a ``rospy.Rate`` made then counts from it). A controller that waits for
+  simulated time the bridge cannot foresee (a ``rospy.Timer`` or ``rospy.sleep`` counted from
+  some later time) gets ``command_deadline``: when no command comes within it after a state, the
+  bridge steps with the last command held, then on in real time until one comes
+  (:class:`~mazesim.ros.lockstep.CommandDeadline`, the rule of both bridges). Run exactly one
+  controller in this mode.
 - ``realtime``: the simulation steps on its own, ``speed`` times faster than the wall clock, with
   the last commanded wheel speeds.
 
@@ -31,7 +35,8 @@ Parameters (private, e.g. ``~world``; options of ``mazesim ros bridge`` take pre
 ``world`` (built-in name or world file, default ``seed-maze``), ``robot`` (``e-puck``), ``seed``
 (0), ``mode`` (``lockstep``), ``speed`` (1.0), ``duration`` (simulated seconds after which the
 bridge stops, 0 for never), ``noise`` (true), ``stop_at_goal`` (false: stop after the step that
-brings the robot into the world's goal disc), ``command_period`` (0: a step per command). The
+brings the robot into the world's goal disc), ``command_period`` (0: a step per command),
+``command_deadline`` (0: wait for each command). The
 bridge sets ``/use_sim_time`` to true unless it
 is already set, and sets ``control_step_ms`` in its namespace (next to its topics, e.g.
 ``/control_step_ms``) to the length of its control step before it listens for commands: the
@@ -68,11 +73,12 @@ from mazesim.ros.bag import BagWriter
 from mazesim.ros.lockstep import (
     IDLE_CLOCK_AFTER_S,
     RESEND_S,
+    CommandDeadline,
     TimerHold,
     UnansweredState,
     stamp_nanoseconds,
 )
-from mazesim.ros.resets import RESET_SIMULATION, RESETS, EpisodeResets
+from mazesim.ros.resets import RESET_SIMULATION, RESETS, EpisodeResets, service_name
 from mazesim.ros.standard import StandardPublishers
 
 __all__ = [
@@ -91,8 +97,6 @@ MODES = ("lockstep", "realtime")
 IDLE_WARNING_S = 5.0
 #: How many control steps a real-time bridge may fall behind before it stops catching up.
 MAX_LAG_STEPS = 5
-#: Where the reset services are, as Gazebo's ROS 1 node names them (``/gazebo/reset_world``).
-GAZEBO_NAMESPACE = "/gazebo"
 
 
 @dataclass
@@ -111,6 +115,10 @@ class BridgeSettings:
     #: in seconds; each command holds until the clock reaches the rate's next tick (0: none, one
     #: step each; see :class:`mazesim.ros.lockstep.TimerHold`).
     command_period: float = 0.0
+    #: Lockstep: wall-clock seconds after a state with no command before the bridge steps with
+    #: the last command held, then on in real time until one comes (0: none, it waits; see
+    #: :class:`mazesim.ros.lockstep.CommandDeadline`).
+    command_deadline: float = 0.0
     #: A bag the bridge writes every message it sends and every command it takes into (see
     #: :mod:`mazesim.ros.bag`; empty: none).
     bag: str = ""
@@ -135,6 +143,16 @@ class BridgeSettings:
             raise InvalidArgumentError(
                 "expected parameter command_period to be seconds >= 0 (0: a step per command); "
                 f"found {_shown(self.command_period)}"
+            )
+        if not (math.isfinite(self.command_deadline) and self.command_deadline >= 0.0):
+            raise InvalidArgumentError(
+                "expected parameter command_deadline to be seconds >= 0 (0: wait for each "
+                f"command); found {_shown(self.command_deadline)}"
+            )
+        if self.command_deadline and self.mode != "lockstep":
+            raise InvalidArgumentError(
+                "expected parameter command_deadline with mode lockstep (in realtime mode time "
+                f"moves whether or not a command comes); found mode {_shown(self.mode)}"
             )
         if self.command_period and self.mode != "lockstep":
             raise InvalidArgumentError(
@@ -215,6 +233,10 @@ class Bridge:
             simulator.control_step_ms / 1000.0,
             origin_ns=stamp_nanoseconds(0.0),
         )
+        #: Lockstep: when the bridge steps without a command (``command_deadline``).
+        self.deadline = CommandDeadline(
+            settings.command_deadline, simulator.control_step_ms / 1000.0
+        )
         #: The last state as it went out: each publisher with its message.
         self.last_state: list[tuple[Any, Any]] = []
         self.bag = BagWriter(ros, settings.bag) if settings.bag else None
@@ -245,11 +267,11 @@ class Bridge:
             rospy.Subscriber(standard.CMD_VEL_TOPIC, ros.Twist, self.on_cmd_vel, tcp_nodelay=True),
         ]
         #: ``/gazebo/reset_simulation`` and ``/gazebo/reset_world`` (``std_srvs/Empty``), as
-        #: Gazebo's node offers them (:mod:`mazesim.ros.resets`).
+        #: Gazebo's node offers them, and Stage's ``/reset_positions`` (:mod:`mazesim.ros.resets`).
         self.resets = EpisodeResets(simulator)
         self.reset_services = [
             rospy.Service(
-                f"{GAZEBO_NAMESPACE}/{kind}",
+                service_name(kind, ros1=True),
                 ros.Empty,
                 functools.partial(self.on_reset, kind),
             )
@@ -377,15 +399,15 @@ class Bridge:
             self.standard.previous = None
             self.standard.previous_time = self.simulator.time
             self.ros.rospy.loginfo(
-                "%s/%s: %s (step %d, %.3f s simulated); publishing the state after it",
-                GAZEBO_NAMESPACE,
-                kind,
+                "%s: %s (step %d, %.3f s simulated); publishing the state after it",
+                service_name(kind, ros1=True),
                 RESETS[kind],
                 self.simulator.steps,
                 self.simulator.time,
             )
             self.publish_state()
             self.unanswered.went_out(time.monotonic())
+            self.deadline.commanded(time.monotonic())
         return self.ros.EmptyResponse()
 
     def on_motor(self, message: Any) -> None:
@@ -449,6 +471,27 @@ class Bridge:
                 if not self.hold.holds(self._stamp()):
                     break
             self.unanswered.went_out(time.monotonic())
+            self.deadline.commanded(time.monotonic())
+
+    def step_on_deadline(self) -> float:
+        """Lockstep with ``command_deadline``, once a command has been stepped: when none has
+        come within the deadline after a state, one step with the last command held, and so on
+        in real time until a command comes (:class:`~mazesim.ros.lockstep.CommandDeadline`), so
+        that a controller waiting for simulated time the bridge cannot foresee gets it. Returns
+        the seconds until the next such step is due (``math.inf``: none)."""
+        with self._lock:
+            now = time.monotonic()
+            if self.stop.is_set() or not self.deadline.due(now):
+                return self.deadline.wait(now)
+            notice = self.deadline.stepped(now)
+            if notice is not None:
+                self.ros.rospy.logwarn(notice)
+            self.simulator.step(*self.wheel_speeds)
+            self.publish_state()
+            self.unanswered.went_out(now)
+            if self._finished():
+                self.stop.set()
+            return self.deadline.wait(time.monotonic())
 
     def _resend_unanswered(self) -> None:
         """Lockstep: when no command has come ``RESEND_S`` after a state went out while a
@@ -514,7 +557,7 @@ class Bridge:
                     )
                     started = math.inf
                 self._resend_unanswered()
-                wait = self.tick_idle_clock()
+                wait = min(self.tick_idle_clock(), self.step_on_deadline())
             return
         period = self.simulator.control_step_ms / 1000.0 / self.settings.speed
         next_step = time.monotonic()
@@ -625,7 +668,8 @@ def run_bridge(
         rospy.loginfo(
             "mazesim bridge stopped: %d steps (%.2f s simulated) in %.2f s of stepping, "
             "%.0f steps/s; %s; %d bad messages ignored (their steps kept the wheel speeds); "
-            "/clock ran %d steps on its own before the first command",
+            "/clock ran %d steps on its own before the first command; %d steps without a "
+            "command (command_deadline)",
             steps,
             simulated,
             elapsed,
@@ -633,6 +677,7 @@ def run_bridge(
             goal,
             bridge.held.refused,
             bridge.idle_steps,
+            bridge.deadline.steps,
         )
         rospy.signal_shutdown("mazesim bridge stopped")
     return 0

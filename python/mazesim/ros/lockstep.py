@@ -25,6 +25,18 @@ multiple of ``P``: exactly the state at which the hold ends, so the node answers
 bridge waits on. How many steps each command holds is a function of the stamps alone, so the run
 is deterministic and equal, field for field, to the in-process run that holds each command over
 those steps.
+
+A node that waits for simulated time at moments the bridge cannot tell from the wire (a timer
+counted from the node's first ``/clock``, a ``sleep`` of simulated time after each command, a
+``Rate`` made at some later state) waited forever: the bridge waited for its command, the node
+for time that moved on commands only. A simulator users run such nodes on (Gazebo, Webots with
+``webots_ros2``) keeps its clock moving whether or not a command comes. Given a deadline
+(``--command-deadline``), :class:`CommandDeadline` does that and keeps lockstep for every node
+that answers in time: once a command has been stepped, when no command comes within the deadline
+after a state, the bridge steps with the last command held, then on in real time, one control
+step per control step of wall-clock time, until a command comes. A node that answers each state
+within the deadline runs the in-process run step for step; a node that waits for time gets it.
+How many steps a command holds then depends on when it came, which the stamps record.
 """
 
 from __future__ import annotations
@@ -33,7 +45,14 @@ import math
 
 from mazesim.errors import InvalidArgumentError
 
-__all__ = ["IDLE_CLOCK_AFTER_S", "RESEND_S", "TimerHold", "UnansweredState", "stamp_nanoseconds"]
+__all__ = [
+    "CommandDeadline",
+    "IDLE_CLOCK_AFTER_S",
+    "RESEND_S",
+    "TimerHold",
+    "UnansweredState",
+    "stamp_nanoseconds",
+]
 
 #: Lockstep: seconds after a state went out, a command writer connected and no command come,
 #: before the bridge sends the state again.
@@ -160,3 +179,65 @@ class TimerHold:
     def holds(self, stamp_ns: int) -> bool:
         """Whether the command holds for another step after the state stamped ``stamp_ns``."""
         return self.active and stamp_ns < self._until_ns
+
+
+class CommandDeadline:
+    """When a lockstep bridge steps without a command (see the module's description).
+
+    The bridge calls :meth:`commanded` when a command has been stepped (or a reset answered),
+    and :meth:`due` on each look; once that says the deadline has passed with no command, it
+    steps with the last command held and calls :meth:`stepped`, and keeps doing so, a control
+    step of wall-clock time apart, until the next command.
+
+    Args:
+        seconds: The deadline in wall-clock seconds (0: none, the bridge waits for a command).
+        control_step_s: The bridge's control step in seconds.
+
+    Raises:
+        InvalidArgumentError: The deadline is not finite or negative.
+    """
+
+    def __init__(self, seconds: float, control_step_s: float) -> None:
+        if not math.isfinite(seconds) or seconds < 0.0:
+            raise InvalidArgumentError(
+                f"expected a command deadline in seconds >= 0 (0: none); found {seconds}"
+            )
+        self.seconds = seconds
+        self.control_step_s = control_step_s
+        #: When (``time.monotonic()``) the next step without a command is due.
+        self.due_at = math.inf
+        #: Steps taken without a command.
+        self.steps = 0
+
+    @property
+    def active(self) -> bool:
+        """Whether the bridge steps without a command."""
+        return self.seconds > 0.0
+
+    def commanded(self, now: float) -> None:
+        """A command was stepped at ``now`` (or a reset answered): the next step without one
+        is due a deadline later."""
+        if self.active:
+            self.due_at = now + self.seconds
+
+    def wait(self, now: float) -> float:
+        """Seconds until the next step without a command (``math.inf``: none is due)."""
+        return max(self.due_at - now, 0.0)
+
+    def due(self, now: float) -> bool:
+        """Whether a step without a command is due."""
+        return now >= self.due_at
+
+    def stepped(self, now: float) -> str | None:
+        """Counts a step without a command, taken at ``now``; the next is a control step of
+        wall-clock time later. Says what to say the first time (``None`` afterwards)."""
+        self.steps += 1
+        self.due_at = max(self.due_at + self.control_step_s, now - self.control_step_s)
+        if self.steps > 1:
+            return None
+        return (
+            f"lockstep: no command {self.seconds:g} s after a state; stepping with the last "
+            "command held, in real time, until one comes (--command-deadline: a node that "
+            "waits for simulated time gets it; one that answers each state within the "
+            "deadline runs step for step)"
+        )

@@ -45,8 +45,14 @@ from mazesim._core import Simulator
 from mazesim.actions import wheel_speeds
 from mazesim.errors import InvalidActionError, InvalidArgumentError, _shown
 from mazesim.ros import standard, topics
-from mazesim.ros.lockstep import IDLE_CLOCK_AFTER_S, RESEND_S, TimerHold, UnansweredState
-from mazesim.ros.resets import RESET_SIMULATION, RESETS, EpisodeResets
+from mazesim.ros.lockstep import (
+    IDLE_CLOCK_AFTER_S,
+    RESEND_S,
+    CommandDeadline,
+    TimerHold,
+    UnansweredState,
+)
+from mazesim.ros.resets import RESET_SIMULATION, RESETS, EpisodeResets, service_name
 from mazesim.ros2 import cdr, network
 from mazesim.ros2.bag import BagRecorder
 from mazesim.ros2.clock import SIM_CONTROL_TOPIC, FreeRunning, stamp_nanoseconds
@@ -107,6 +113,10 @@ class BridgeSettings:
     #: on; each command holds until the clock reaches its next tick (0: none, one step each;
     #: see :class:`mazesim.ros.lockstep.TimerHold`).
     command_period: float = 0.0
+    #: Lockstep: wall-clock seconds after a state with no command before the bridge steps with
+    #: the last command held, then on in real time until one comes (0: none, it waits; see
+    #: :class:`mazesim.ros.lockstep.CommandDeadline`).
+    command_deadline: float = 0.0
     #: The ``--ros-args`` of the command line (a launch file's): the node's name, namespace
     #: and remappings.
     ros_arguments: RosArguments = RosArguments()
@@ -125,6 +135,11 @@ class BridgeSettings:
             raise InvalidArgumentError(
                 "expected --command-period with --mode lockstep (free-running, a node's timer "
                 f"on simulated time runs as it is); found --mode {self.mode}"
+            )
+        if self.command_deadline and self.mode != "lockstep":
+            raise InvalidArgumentError(
+                "expected --command-deadline with --mode lockstep (free-running, time moves "
+                f"whether or not a command comes); found --mode {self.mode}"
             )
         if self.namespace and not _ROS_NAMESPACE.fullmatch(self.namespace):
             raise InvalidArgumentError(
@@ -181,9 +196,11 @@ class RobotChannel:
         self.received = 0
         #: The robot's last state as it went out: each writer with its message.
         self.last_state: list[tuple[Any, bytes]] = []
-        #: The command writers matched at the last look, and when a new one came and how many
-        #: commands the robot had received then (see :meth:`Ros2Bridge._greet_newcomers`).
+        #: The command writers and state readers matched at the last look, and when a new one
+        #: came and how many commands the robot had received then (see
+        #: :meth:`Ros2Bridge._greet_newcomers`).
         self.known_writers: set[int] = set()
+        self.known_readers: set[int] = set()
         self.newcomer_since: tuple[float, int] | None = None
 
     def command_readers(self) -> list[Reader]:
@@ -202,6 +219,11 @@ class RobotChannel:
     def command_writers(self) -> set[int]:
         """The writers matched now on the robot's command topics."""
         return set().union(*(reader.matched_writers() for reader in self.command_readers()))
+
+    def state_readers(self) -> set[int]:
+        """The readers matched now on the robot's state topics (a node's new subscription, as
+        ``rclpy.wait_for_message`` makes one, is new)."""
+        return set().union(*(writer.matched_readers() for writer in self.writers))
 
     def commands(self) -> list[tuple[float, float]]:
         """The wheel speeds of every command received since the last call. A bad one is
@@ -269,6 +291,10 @@ class Ros2Bridge:
             )
         #: Lockstep: how long each command holds (``--command-period``).
         self.hold = TimerHold(settings.command_period, simulator.control_step_ms / 1000.0)
+        #: Lockstep: when the bridge steps without a command (``--command-deadline``).
+        self.deadline = CommandDeadline(
+            settings.command_deadline, simulator.control_step_ms / 1000.0
+        )
         self.simulator = simulator
         self.settings = settings
         self.node = node or Node(
@@ -325,7 +351,9 @@ class Ros2Bridge:
         #: ``/reset_simulation`` and ``/reset_world`` (``std_srvs/srv/Empty``, as Gazebo's
         #: ``gazebo_ros_init`` offers them; :mod:`mazesim.ros.resets`).
         self.resets = EpisodeResets(simulator)
-        self.reset_servers = [(self.node.service_server("/" + kind), kind) for kind in RESETS]
+        self.reset_servers = [
+            (self.node.service_server(service_name(kind, ros1=False)), kind) for kind in RESETS
+        ]
         self.node.announce()
         published = [writer.topic for writer in self.node.writers]
         self.unpublished = UnpublishedTopics(
@@ -346,6 +374,8 @@ class Ros2Bridge:
         self.goal_step: int | None = None
         self.stop = threading.Event()
         self.rejected_controls = 0
+        #: Reset calls answered so far.
+        self.resets_served = 0
         #: Lockstep: when a state that went unanswered goes out again.
         self.unanswered = UnansweredState()
         #: Lockstep: control steps ``/clock`` ran on its own before the first command; every
@@ -477,6 +507,24 @@ class Ros2Bridge:
         self.step_robots()
         while self.hold.holds(self.stamp()) and not self.stop.is_set():
             self.step_robots()
+        self.deadline.commanded(time.monotonic())
+
+    def _step_on_deadline(self) -> None:
+        """Lockstep with ``--command-deadline``, once a command has been stepped: when none
+        has come within the deadline after a state, one step with every robot's last command
+        held (a robot whose command waits takes it), and so on in real time until a command
+        comes (:class:`~mazesim.ros.lockstep.CommandDeadline`), so that a node waiting for
+        simulated time the bridge cannot foresee gets it."""
+        now = time.monotonic()
+        if self.stop.is_set() or not self.deadline.due(now):
+            return
+        for robot in self.robots:
+            if robot.pending:
+                robot.wheel_speeds = robot.pending.popleft()
+        notice = self.deadline.stepped(now)
+        if notice is not None:
+            self._say(notice)
+        self.step_robots()
 
     def _serve_resets(self) -> None:
         """Answers the calls of ``/reset_simulation`` and ``/reset_world``: puts the simulator
@@ -499,6 +547,8 @@ class Ros2Bridge:
                 )
                 self.publish_state(0.0)
                 self.unanswered.went_out(time.monotonic())
+                self.deadline.commanded(time.monotonic())
+                self.resets_served += 1
                 server.reply(header)
 
     def wait_for_driver(self) -> None:
@@ -527,9 +577,11 @@ class Ros2Bridge:
                         self.step_robots()
             self._greet_newcomers()  # the writers matched now are the first drivers, not late
             while not self.stop.is_set():
-                wait = min(0.1, max(self._idle_tick_at - time.monotonic(), 0.0))
+                now = time.monotonic()
+                wait = min(0.1, max(self._idle_tick_at - now, 0.0), self.deadline.wait(now))
                 self._waitset.wait(int(wait * 1e9))
                 self._step_pending()
+                self._step_on_deadline()
                 self._serve_resets()
                 self._check_readers()
                 self._greet_newcomers()
@@ -622,21 +674,25 @@ class Ros2Bridge:
         self._idle_tick_at += self.simulator.control_step_ms / 1000.0
 
     def _greet_newcomers(self) -> None:
-        """Lockstep, once stepping: a node that starts writing a robot's commands after the
-        robot's last state went out (started, or restarted, while the bridge runs) waits for a
-        state, and the bridge for its command. When a command writer matches that was not
-        matched before, and the robot has received no command ``READY_GRACE_S`` later, the
-        robot's last state goes out again as it went out (same stamp; ``/clock`` too in a world
-        of one robot); a node that answers at once gets nothing twice. Says so on stderr."""
+        """Lockstep, once stepping or after a reset: a node that starts writing a robot's
+        commands after the robot's last state went out (started, or restarted, while the bridge
+        runs), or makes a new reader of its state (``rclpy.wait_for_message`` after a reset
+        call or between two commands: a volatile reader receives nothing sent before it
+        matched), waits for a state, and the bridge for its command. When a command writer or a
+        state reader matches that was not matched before, and the robot has received no command
+        ``READY_GRACE_S`` later, the robot's last state goes out again as it went out (same
+        stamp; ``/clock`` too in a world of one robot); a node that answers at once gets nothing
+        twice. Says so on stderr."""
         now = time.monotonic()
         if now - self._newcomers_checked < NEWCOMERS_CHECK_S:
             return  # a look costs a DDS query per command topic: not at every lockstep step
         self._newcomers_checked = now
         for robot in self.robots:
-            writers = robot.command_writers()
-            if writers - robot.known_writers and self.simulator.steps > 0:
+            writers, readers = robot.command_writers(), robot.state_readers()
+            came = writers - robot.known_writers or readers - robot.known_readers
+            if came and (self.simulator.steps > 0 or self.resets_served):
                 robot.newcomer_since = (now, robot.received)
-            robot.known_writers = writers
+            robot.known_writers, robot.known_readers = writers, readers
             if robot.newcomer_since is None:
                 continue
             since, received = robot.newcomer_since
@@ -653,9 +709,10 @@ class Ros2Bridge:
             self._send(writer, nanoseconds, data)
         topic = f"{robot.state.namespace}/{standard.CMD_VEL_TOPIC}"
         self._say(
-            f"lockstep: a command writer matched after the last state went out (e.g. on {topic}: "
-            f"a node started or restarted while the bridge runs) and sent nothing in "
-            f"{READY_GRACE_S:g} s; publishing that state again (step {self.simulator.steps})"
+            f"lockstep: a command writer or state reader matched after the last state went out "
+            f"(e.g. on {topic}: a node started or restarted while the bridge runs, or one "
+            f"waiting for a message after a reset) and no command came in {READY_GRACE_S:g} s; "
+            f"publishing that state again (step {self.simulator.steps})"
         )
 
     def _run_free(self) -> None:
@@ -748,10 +805,12 @@ def run_bridge(settings: BridgeSettings) -> int:
         if bridge.idle_steps
         else ""
     )
+    unanswered = bridge.deadline.steps
+    held = f", {unanswered} steps without a command (--command-deadline)" if unanswered else ""
     print(
         f"mazesim ros2 bridge: stopped after {simulator.steps} steps "
         f"({simulator.time:.3f} s simulated, {time.monotonic() - started:.1f} s wall clock), "
-        f"{goal}{idle}",
+        f"{goal}{idle}{held}",
         file=sys.stderr,
         flush=True,
     )

@@ -54,6 +54,10 @@ class Writer:
         """How many readers are matched."""
         return len(self.dds.get_matched_subscriptions())
 
+    def matched_readers(self) -> set[int]:
+        """The DDS instance handles of the readers matched now (a new subscription's are new)."""
+        return set(self.dds.get_matched_subscriptions())
+
 
 class Reader:
     """Receives the encoded messages of one topic."""
