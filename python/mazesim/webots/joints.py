@@ -112,7 +112,7 @@ class LinearJointMotor(JointMotor):
     _force_field = "maxForce"
 
     def getType(self) -> int:
-        """:data:`LINEAR`."""
+        """``Motor.LINEAR``."""
         return self.LINEAR
 
 
@@ -128,7 +128,7 @@ class JointPositionSensor(PositionSensor):
         return motor._angle if isinstance(motor, JointMotor) else 0.0
 
     def getType(self) -> int:
-        """Its motor's type (:data:`ROTATIONAL` without one)."""
+        """Its motor's type (``Motor.ROTATIONAL`` without one)."""
         motor = self._motor
         return motor.getType() if motor is not None else self.ROTATIONAL
 
