@@ -6,7 +6,8 @@ Names are Webots': ``left wheel motor`` / ``right wheel motor``, ``left wheel se
 e-puck2) and ground sensors (``gs0``..``gs2``), ``ls0``..``ls7``, ``led0``..``led9``,
 ``camera``, ``accelerometer``, ``gyro``, ``emitter``, ``receiver``, ``speaker``; then every
 device of the import report's ``extension_devices``. A robot saved expanded that names its
-wheels' motors or position sensors otherwise has them by its world's names.
+wheels' motors or position sensors otherwise has them by its world's names; a robot's other
+motors and their position sensors turn joints that move nothing (:mod:`mazesim.webots.joints`).
 """
 
 from __future__ import annotations
@@ -27,6 +28,7 @@ from mazesim.webots.devices import (
     _Sensor,
 )
 from mazesim.webots.inert import Display, Lidar, Pen, Speaker
+from mazesim.webots.joints import JointMotor, JointPositionSensor, LinearJointMotor, pair_joints
 from mazesim.webots.keyboard import Joystick, Keyboard, Mouse
 from mazesim.webots.radio_devices import (
     E_PUCK_CHANNEL,
@@ -102,6 +104,15 @@ _WHEEL_MOTORS = ("left wheel motor", "right wheel motor")
 _WHEEL_SENSORS = ("left wheel sensor", "right wheel sensor")
 
 
+def _own(entries: Sequence[Mapping[str, Any]], kind: str) -> list[Mapping[str, Any]]:
+    """The import's entries of the devices of ``kind`` among the robot's own children."""
+    return [
+        entry
+        for entry in entries
+        if entry.get("type") == kind and entry.get("slot") == "children" and entry.get("name")
+    ]
+
+
 def _wheel_names(
     entries: Sequence[Mapping[str, Any]], kind: str, stock: tuple[str, str]
 ) -> tuple[list[str], list[Mapping[str, Any]]]:
@@ -113,14 +124,12 @@ def _wheel_names(
     devices (``slot`` ``children``), and they are its wheels', as Webots finds them by the
     names the world gives. A name saying ``left`` or ``right`` is that wheel's; another takes
     the first wheel not yet named, the left before the right (the PROTO's order). A robot with
-    more than two such devices of its own (an arm's motors besides) keeps the PROTO's names.
+    more than two such devices of its own (an arm's motors besides) keeps the PROTO's names, and
+    so do the position sensors of a robot with more than two motors of its own (not the e-puck's
+    two wheels: see :mod:`mazesim.webots.joints`).
     """
-    own = [
-        entry
-        for entry in entries
-        if entry.get("type") == kind and entry.get("slot") == "children" and entry.get("name")
-    ]
-    if not own or len(own) > 2:
+    own = _own(entries, kind)
+    if not own or len(own) > 2 or len(_own(entries, "RotationalMotor")) > 2:
         return list(stock), []
     names = list(stock)
     free = [0, 1]
@@ -185,6 +194,9 @@ def extension_device(simulation: RobotSimulation, entry: Mapping[str, Any]) -> D
         ),
         "Pen": lambda: Pen(name, simulation),
         "Lidar": lambda: Lidar(name, simulation),
+        "RotationalMotor": lambda: JointMotor(name, simulation, fields),
+        "LinearMotor": lambda: LinearJointMotor(name, simulation, fields),
+        "PositionSensor": lambda: JointPositionSensor(name, simulation),
     }
     build = builders.get(kind)
     if build is None:
@@ -294,13 +306,16 @@ class Equipment:
             Speaker("speaker", simulation),
         ]
         own_nodes: set[int] = set()
+        built: list[tuple[Mapping[str, Any], Device]] = []
         for entry in entries:
             if id(entry) in wheel_entries:
                 continue
             if device := extension_device(simulation, entry):
                 devices.append(device)
+                built.append((entry, device))
                 if entry.get("slot") == "children":
                     own_nodes.add(id(device))
+        self._joints = pair_joints(built)
         self.devices: dict[str, Device] = {}
         for device in devices:
             known = self.devices.get(device.getName())
@@ -323,5 +338,7 @@ class Equipment:
         simulation = self._simulation
         left, right = simulation.wheel_angles()
         simulation.advance(self._motors[0]._wheel_speed(left), self._motors[1]._wheel_speed(right))
+        for joint in self._joints:
+            joint._turn(simulation.basic_time_step_ms / 1000.0)
         for sensor in self._sampled:
             sensor._after_step()
