@@ -116,7 +116,8 @@ import os
 from controller import Robot
 
 robot = Robot()
-with open(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "starts.json"), "a") as out:
+log = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "starts.json")
+with open(log, "a") as out:
     out.write(json.dumps([NAME, robot.getTime()]) + "\\n")
 while robot.step(int(robot.getBasicTimeStep())) != -1:
     pass

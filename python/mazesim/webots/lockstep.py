@@ -51,6 +51,7 @@ from mazesim._toml import dump_toml, load_toml
 from mazesim.errors import ControllerBuildError, MazesimIOError, WorldFormatError
 from mazesim.webots.controller_process import ControllerJob, answer, state_after_step
 from mazesim.webots.keyboard import KeyScript
+from mazesim.webots.last_commands import Coasting, WheelCommand
 from mazesim.webots.line_of_sight import LineOfSight, robot_body_radii
 from mazesim.webots.own_sensors import own_sensors
 from mazesim.webots.process_template import ControllerProcesses
@@ -1009,7 +1010,10 @@ def _lockstep(
                         for index, text in world.own_custom_data.items():
                             fleet.note_own_custom_data(index, text)
                         world.own_custom_data.clear()
-                        _step_world(simulators, traction.drive(wheels), world.radio, runs)
+                        # A robot whose controller has ended goes on as its motors'
+                        # last commands have it.
+                        driven = {**world.coasting.wheels(traction.dt), **wheels}
+                        _step_world(simulators, traction.drive(driven), world.radio, runs)
                         traction.settle()
                         if fleet.reset_asked:
                             fleet.reset_scene()
@@ -1060,6 +1064,8 @@ class _Pipes:
         #: several processes, the bookkeeping is the process's).
         self.retired: dict[int, Any] = {}
         self.wheels: dict[int, tuple[float, float]] = {}
+        #: The robots whose controllers have ended, driven by their motors' last commands.
+        self.coasting = Coasting()
         #: Each robot's own ``setCustomData`` sent with the step it asked for.
         self.own_custom_data: dict[int, str] = {}
         self.over = False
@@ -1096,6 +1102,7 @@ class _Pipes:
         self.fleet.restarts.clear()
         for index in self.fleet.left:
             self.runs[index].removed_s = float(self.fleet.clock())
+            self.coasting.stop(index)
             if index in self.live:
                 self.live.discard(index)
                 self.leaving.add(index)
@@ -1115,6 +1122,7 @@ class _Pipes:
 
     def _start(self, processes: ControllerProcesses, index: int, job: ControllerJob) -> None:
         """Starts robot ``index``'s controller process for ``job``; the world waits for it."""
+        self.coasting.stop(index)
         connection = processes.start(job)
         self.connections[index] = connection  # type: ignore[index]
         self.by_connection[id(connection)] = index
@@ -1149,6 +1157,9 @@ class _Pipes:
         elif message[0] == "done":
             summary = message[1]
             self._ended(index)
+            if self.movable[index] and index not in self.fleet.gone:
+                commands = summary.get("wheel_commands") or ()
+                self.coasting.start(index, [WheelCommand(**c) for c in commands])
             for key in ("exit_status", "error", "reached_end", "stopped"):
                 setattr(run, key, summary[key])
             run.quit_requested = bool(summary["quit_requested"])
