@@ -94,3 +94,72 @@ def test_another_robot_s_controller_restarts_where_its_robot_stands(
     one_run = 10 * 5.0 * 0.02 * STEP_S
     assert runner.final_pose[0] == pytest.approx(-0.5 + 2 * one_run, abs=2e-3)
     assert math.isclose(runner.final_pose[1], 0.0, abs_tol=1e-3)
+
+
+#: Writes the worker's controller field after its 10th step.
+WRITER = """from controller import Supervisor
+
+boss = Supervisor()
+step = int(boss.getBasicTimeStep())
+field = boss.getFromDef("WORKER").getField("controller")
+steps = 0
+while boss.step(step) != -1:
+    steps += 1
+    if steps == 10:
+        field.setSFString(NEW)
+"""
+
+#: Notes its own name and the clock at its start, then steps to the end.
+NOTED = """import json
+import os
+
+from controller import Robot
+
+robot = Robot()
+log = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "starts.json")
+with open(log, "a") as out:
+    out.write(json.dumps([NAME, robot.getTime()]) + "\\n")
+while robot.step(int(robot.getBasicTimeStep())) != -1:
+    pass
+"""
+
+FIELD_WORLD = """#VRML_SIM R2023b utf8
+WorldInfo { basicTimeStep 32 }
+Robot { name "boss" controller "writer" supervisor TRUE }
+DEF WORKER E-puck { translation -0.5 0 0 name "worker" controller "first" }
+"""
+
+
+@pytest.mark.parametrize(
+    ("new", "given_by", "expected"),
+    [
+        # The field names the new controller: a file given by the robot's name or DEF name
+        # (which stood for the field's old value) no longer applies.
+        ("second", "worker", "second"),
+        ("second", "WORKER", "second"),
+        # A file given by the new value applies to it.
+        ("second", "second", "given"),
+        # <extern>: the controller left to be started outside, the one given by name.
+        ("<extern>", "worker", "given"),
+    ],
+)
+def test_a_written_controller_field_names_the_controller_that_starts(
+    tmp_path: Path, new: str, given_by: str, expected: str
+) -> None:
+    sources = {
+        "writer": WRITER.replace("NEW", repr(new)),
+        **{name: NOTED.replace("NAME", repr(name)) for name in ("first", "second", "given")},
+    }
+    world = project_of(tmp_path, "field.wbt", FIELD_WORLD, sources)
+    given = str(tmp_path / "controllers" / "given" / "given.py")
+    boss, worker = run_world(
+        str(world), seconds=0.64, noise=False, controllers={given_by: given}
+    ).robots
+    assert [boss.exit_status, worker.exit_status] == [0, 0], [boss.error, worker.error]
+    starts = [
+        json.loads(line)
+        for line in (tmp_path / "controllers" / "starts.json").read_text().splitlines()
+    ]
+    first = "given" if given_by in ("worker", "WORKER") else "first"
+    assert starts == [[first, 0.0], [expected, pytest.approx(10 * STEP_S)]]
+    assert worker.controller is not None and worker.controller.endswith(f"{expected}.py")

@@ -21,7 +21,8 @@ messages are pickled tuples). The protocol, from the controller's side:
   changed the walls (``Fleet.wall_changes``), or ``("ok", (True, None))`` without a step
   when a supervisor has quit the simulation (``Robot.step`` then returns -1);
 - ``("done", summary)``: the controller has ended (a dict of :class:`ControllerSummary`'s
-  fields); no answer. From then on the robot's wheels stay still.
+  fields); no answer. From then on the robot's wheels turn as its motors' last commands have
+  them (:mod:`mazesim.webots.last_commands`), as in Webots.
 
 The controller itself runs as in a run of one robot (:func:`mazesim.webots.runner.run_controller`)
 against a :class:`RemoteSimulator`, which forwards the simulator's methods over the pipe.
@@ -93,6 +94,9 @@ class ControllerSummary:
     stopped: bool
     quit_requested: bool
     steps: int
+    #: The wheel motors' commands as the controller left them, each a
+    #: :class:`~mazesim.webots.last_commands.WheelCommand`'s fields.
+    wheel_commands: tuple[dict[str, float], ...] = ()
 
 
 class Remote:
@@ -254,7 +258,13 @@ def controller_main(connection: Connection, job: ControllerJob) -> None:
             keys=job.keys,
         )
         summary = ControllerSummary(
-            run.exit_status, run.error, run.reached_end, run.stopped, run.quit_requested, run.steps
+            run.exit_status,
+            run.error,
+            run.reached_end,
+            run.stopped,
+            run.quit_requested,
+            run.steps,
+            tuple(asdict(command) for command in run.wheel_commands),
         )
         if run.error:
             sys.stderr.write(run.error)

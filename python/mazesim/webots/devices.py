@@ -19,6 +19,7 @@ import numpy as np
 
 from mazesim._toml import load_toml
 from mazesim.errors import InvalidArgumentError, _a_type
+from mazesim.webots.last_commands import WheelCommand, motor_speed
 from mazesim.webots.node_types import node_type
 
 if TYPE_CHECKING:
@@ -40,8 +41,6 @@ PROXIMITY_TABLE = (
     (0.06, 104.09, 0.03065),
     (0.07, 67.19, 0.04897),
 )
-#: Proportional gain of Webots' motor position control (Motor.controlPID default 10 0 0).
-POSITION_GAIN = 10.0
 
 
 def _print_error(message: str) -> None:
@@ -695,12 +694,12 @@ class Motor(Device):
 
     def _wheel_speed(self, angle: float) -> float:
         """The wheel speed (rad/s) for the next step, the wheel being at ``angle``."""
-        limit = min(abs(self._velocity), self._max_velocity)
-        if math.isinf(self._target_position):
-            speed = self._velocity if self._target_position > 0 else -self._velocity
-            return max(-self._max_velocity, min(self._max_velocity, speed))
-        error = self._target_position - angle
-        return max(-limit, min(limit, POSITION_GAIN * error))
+        return motor_speed(self._target_position, self._velocity, self._max_velocity, angle)
+
+    def last_command(self, angle: float) -> WheelCommand:
+        """The motor's commands as they stand, the wheel being at ``angle``: what drives the
+        wheel once the controller has ended (:mod:`mazesim.webots.last_commands`)."""
+        return WheelCommand(self._target_position, self._velocity, self._max_velocity, angle)
 
 
 class LED(Device):

@@ -273,6 +273,7 @@ class Equipment:
         ]
         for motor, encoder in zip(self._motors, encoders):
             encoder._motor = motor
+        simulation.wheel_motors = list(self._motors)
         # Each wheel's motor, then its sensor: the E-puck PROTO's tree order, which numbers a
         # C controller's device tags (left motor 1, left sensor 2, right motor 3...).
         devices: list[Device] = [self._motors[0], encoders[0], self._motors[1], encoders[1]]

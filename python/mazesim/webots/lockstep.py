@@ -51,6 +51,7 @@ from mazesim._toml import dump_toml, load_toml
 from mazesim.errors import ControllerBuildError, MazesimIOError, WorldFormatError
 from mazesim.webots.controller_process import ControllerJob, answer, state_after_step
 from mazesim.webots.keyboard import KeyScript
+from mazesim.webots.last_commands import Coasting, WheelCommand
 from mazesim.webots.line_of_sight import LineOfSight, robot_body_radii
 from mazesim.webots.own_sensors import own_sensors
 from mazesim.webots.process_template import ControllerProcesses
@@ -218,6 +219,9 @@ class Fleet:
         #: The robots whose controllers a supervisor asked to restart since the run last took
         #: note (each one's process ends and a new one starts).
         self.restarts: list[int] = []
+        #: The robots whose ``controller`` field a supervisor wrote: from then on the field
+        #: names the controller (:func:`controller_of`'s ``by_field``).
+        self.fields_written: set[int] = set()
         #: The running world's description as a supervisor last changed it, which the
         #: controllers of the robots it imports read, and the world file's number of lines
         #: (the imported nodes' come after them).
@@ -339,6 +343,7 @@ class Fleet:
         if index in self.gone or not 0 <= index < len(self._robots):
             return False
         self._robots[index] = {**self._robots[index], "controller": str(name)}
+        self.fields_written.add(index)
         return self.restart_controller(index)
 
     def set_custom_data(self, index: int, text: str) -> None:
@@ -547,7 +552,7 @@ class Fleet:
 
 
 def controller_of(
-    robot: Mapping[str, Any], world_path: str, given: Mapping[str, str]
+    robot: Mapping[str, Any], world_path: str, given: Mapping[str, str], by_field: bool = False
 ) -> tuple[str | None, str]:
     """The controller file a robot runs, or None and why not.
 
@@ -557,8 +562,16 @@ def controller_of(
             folder (Webots' project layout), then beside it.
         given: Controller files given on the command line, by robot name, DEF name or
             controller field.
+        by_field: Whether a supervisor wrote the robot's ``controller`` field: Webots then
+            starts the controller the field names, so a file given by the robot's name or DEF
+            name no longer applies (one given by the new field's value does, and so does one
+            given by name when the field now reads ``<extern>``, the controller Webots leaves
+            to be started outside).
     """
-    for key in (robot.get("name"), robot.get("def_name"), robot.get("controller")):
+    keys = [robot.get("name"), robot.get("def_name"), robot.get("controller")]
+    if by_field and robot.get("controller") != EXTERN:
+        keys = keys[2:]
+    for key in keys:
         if key and key in given:
             return os.path.abspath(given[key]), ""
     name = controller_name(robot)
@@ -631,7 +644,8 @@ def run_world(
         seed: Seed of the sensor noise (each robot gets a stream of its own).
         noise: Whether the sensors are noisy.
         controllers: Controller files for some robots, by robot name, DEF name or controller
-            field (they win over the world's ``controller`` fields).
+            field (they win over the world's ``controller`` fields, until a supervisor writes
+            that robot's field: :func:`controller_of`).
         observer: Called before every step and after the last (:data:`StepObserver`).
         keys: The keyboard script, played on every controller's ``Keyboard`` (a controller
             that enables its keyboard reads it, one that does not is untouched), as Webots
@@ -691,8 +705,9 @@ def run_world(
         restarted controller's robot keeps its body and wheels as they are."""
         imported_s = float(simulators[index].time)
         left = max(seconds - imported_s, 1e-9)
+        by_field = index in fleet.fields_written
         run, job = _robot_run(
-            world_path, index, robots[index], controllers or {}, left, noise, keys
+            world_path, index, robots[index], controllers or {}, left, noise, keys, by_field
         )
         run.imported_s = imported_s
         robot, text = robots[index], fleet.text or ""  # the world as the import changed it
@@ -760,10 +775,12 @@ def _robot_run(
     seconds: float,
     noise: bool,
     keys: KeyScript | None = None,
+    by_field: bool = False,
 ) -> tuple[RobotRun, ControllerJob | None]:
-    """Robot ``index``'s run, and the job of its controller process (None without one)."""
+    """Robot ``index``'s run, and the job of its controller process (None without one);
+    ``by_field``: a supervisor wrote its ``controller`` field (:func:`controller_of`)."""
     profile = robot_profile_name({"robot_profile": robot.get("profile")})
-    file, note = controller_of(robot, world_path, given)
+    file, note = controller_of(robot, world_path, given, by_field)
     label = robot_label(robot)
     run = RobotRun(index, str(label), str(robot.get("model")), file, note)
     if file is None:
@@ -1022,7 +1039,10 @@ def _lockstep(
                         for index, text in world.own_custom_data.items():
                             fleet.note_own_custom_data(index, text)
                         world.own_custom_data.clear()
-                        _step_world(simulators, traction.drive(wheels), world.radio, runs)
+                        # A robot whose controller has ended goes on as its motors'
+                        # last commands have it.
+                        driven = {**world.coasting.wheels(traction.dt), **wheels}
+                        _step_world(simulators, traction.drive(driven), world.radio, runs)
                         traction.settle()
                         if fleet.reset_asked:
                             fleet.reset_scene()
@@ -1073,6 +1093,8 @@ class _Pipes:
         #: several processes, the bookkeeping is the process's).
         self.retired: dict[int, Any] = {}
         self.wheels: dict[int, tuple[float, float]] = {}
+        #: The robots whose controllers have ended, driven by their motors' last commands.
+        self.coasting = Coasting()
         #: Each robot's own ``setCustomData`` sent with the step it asked for.
         self.own_custom_data: dict[int, str] = {}
         self.over = False
@@ -1115,6 +1137,7 @@ class _Pipes:
         self.fleet.restarts.clear()
         for index in self.fleet.left:
             self.runs[index].removed_s = float(self.fleet.clock())
+            self.coasting.stop(index)
             if index in self.live:
                 self.live.discard(index)
                 self.leaving.add(index)
@@ -1134,6 +1157,7 @@ class _Pipes:
 
     def _start(self, processes: ControllerProcesses, index: int, job: ControllerJob) -> None:
         """Starts robot ``index``'s controller process for ``job``; the world waits for it."""
+        self.coasting.stop(index)
         connection = processes.start(job)
         self.connections[index] = connection  # type: ignore[index]
         self.by_connection[id(connection)] = index
@@ -1168,6 +1192,9 @@ class _Pipes:
         elif message[0] == "done":
             summary = message[1]
             self._ended(index)
+            if self.movable[index] and index not in self.fleet.gone:
+                commands = summary.get("wheel_commands") or ()
+                self.coasting.start(index, [WheelCommand(**c) for c in commands])
             for key in ("exit_status", "error", "reached_end", "stopped"):
                 setattr(run, key, summary[key])
             run.quit_requested = bool(summary["quit_requested"])

@@ -28,6 +28,7 @@ from mazesim.webots import controller as controller_module
 from mazesim.webots import native_controller, termination
 from mazesim.webots import simulation as simulations
 from mazesim.webots.keyboard import KeyScript
+from mazesim.webots.last_commands import WheelCommand
 from mazesim.webots.requirements import (
     PreparedController,
     prepare_controller,
@@ -75,6 +76,9 @@ class ControllerRun:
         quit_requested: Whether a supervisor called ``simulationQuit``.
         final_pose: The robot's x, y, yaw at the end.
         robot_model: The robot profile that ran.
+        wheel_commands: The wheel motors' commands as the controller left them (left wheel
+            first; none when it made no robot), which a world run goes on applying
+            (:mod:`mazesim.webots.last_commands`).
         stopped: Whether the controller went on for more than
             :data:`~mazesim.webots.termination.GRACE_SECONDS` of real time after ``Robot.step``
             returned -1 and was stopped, as Webots ends such a controller.
@@ -101,6 +105,7 @@ class ControllerRun:
     robot_model: str = "e-puck"
     stopped: bool = False
     stalled: bool = False
+    wheel_commands: tuple[WheelCommand, ...] = ()
 
 
 #: The files a Webots controller folder ``controllers/NAME`` may run, ``NAME`` and one of these
@@ -378,6 +383,8 @@ def _outcome(
     """The run's :class:`ControllerRun` (``stalled``: the watchdog stopped a controller that took
     no step)."""
     simulator = simulation.simulator
+    motors = simulation.wheel_motors
+    angles = simulation.wheel_angles() if motors else ()
     return ControllerRun(
         world=simulation.world if simulation.scene_edits is not None else world,
         controller=file,
@@ -397,6 +404,7 @@ def _outcome(
         quit_requested=simulation.quit_status is not None,
         final_pose=simulator.pose,
         robot_model=str(simulator.robot.name),
+        wheel_commands=tuple(motor.last_command(a) for motor, a in zip(motors, angles)),
     )
 
 

@@ -260,6 +260,9 @@ class RobotSimulation:
             WorldReset() if fleet is None else fleet.last_reset(robot_index)
         )
         self.reset_listeners: list[Callable[[], None]] = []
+        #: The wheels' motors of the robot the controller made (left first), whose commands
+        #: go on driving the wheels after its end in a world run.
+        self.wheel_motors: list[Any] = []
         #: Whether a supervisor of this run of one robot asked for a reset, which the next step
         #: applies at its end.
         self._reset_asked = False
