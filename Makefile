@@ -14,7 +14,7 @@ PY_PACKAGES := maturin numpy matplotlib pillow tqdm quickjs lupa
 # What `make test`, `lint`, `typecheck` and `fmt` need beside (pyproject's extra "dev", plus Ray):
 # installed by `make dev-deps` (a stamp of its own), so `make demo` does not pay for them.
 DEV_PACKAGES := pytest pytest-xdist hypothesis ruff mypy typing_extensions gymnasium ray imageio imageio-ffmpeg \
-	moviepy selenium tensorboardX
+	moviepy selenium tensorboardX nbclient nbformat ipykernel
 DEV_STAMP := $(VENV)/.dev-installed
 PY_SOURCES := python tests examples
 # Only `make bench-peers` needs these: the peers mazesim is measured against, and its

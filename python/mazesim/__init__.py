@@ -96,7 +96,9 @@ def load_world(name_or_path: str | os.PathLike[str]) -> World:
     world file without a ``name`` is named after the file (``my-maze`` for ``my-maze.toml``).
 
     Args:
-        name_or_path: A built-in world name such as ``"seed-maze"``, or a path to a world file.
+        name_or_path: A built-in world name such as ``"seed-maze"``
+            (``mazesim.builtin_world_names()`` or ``mazesim worlds`` lists them), or a path to a
+            world file (``.toml`` or ``.wbt``).
 
     Returns:
         The loaded world.

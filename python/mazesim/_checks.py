@@ -449,6 +449,42 @@ def _read_as_another_int(value: Any) -> bool:
     return isinstance(value, _READ_AS_INTS) and not float(value).is_integer()
 
 
+#: The most characters of a parameter's description a missing-argument message quotes.
+MOST_DESCRIBED = 300
+
+
+def documented_argument(func: Callable[..., Any], name: str) -> str | None:
+    """What the ``Args:`` section of ``func``'s docstring says of the parameter ``name``, on one
+    line (continuation lines joined; cut at :data:`MOST_DESCRIBED` characters), or None when the
+    docstring does not describe it: what a call that forgot the argument is told to pass."""
+    lines = (inspect.getdoc(inspect.unwrap(func)) or "").splitlines()
+    try:
+        start = next(i for i, line in enumerate(lines) if line.strip() == "Args:")
+    except StopIteration:
+        return None
+    found: list[str] = []
+    indent = None
+    for line in lines[start + 1 :]:
+        text = line.strip()
+        depth = len(line) - len(line.lstrip())
+        if indent is None:
+            if text and depth == 0:  # the next section: the parameter is not described
+                break
+            if text.startswith((f"{name}:", f"{name} (")):
+                indent = depth
+                found.append(text.split(":", 1)[1].strip())
+        elif text and depth > indent:
+            found.append(text)
+        else:
+            break
+    described = " ".join(found).strip()
+    if not described:
+        return None
+    return (
+        described if len(described) <= MOST_DESCRIBED else described[: MOST_DESCRIBED - 3] + "..."
+    )
+
+
 class _Parameters:
     """The checks of one callable's parameters, read from its annotations at its first call."""
 
@@ -544,8 +580,10 @@ class _Parameters:
                 )
         for index, name, keyword_only in self.required:
             if name not in kwargs and (keyword_only or index >= len(args)):
+                meaning = documented_argument(self.func, name)
                 raise InvalidArgumentError(
                     f"{self.func.__qualname__}: expected the argument {_shown(name)}, found none"
+                    + (f"; {name}: {meaning}" if meaning else "")
                 )
 
     def check_text(self, args: tuple[Any, ...], kwargs: dict[str, Any]) -> None:

@@ -262,7 +262,8 @@ def _arguments(
     arguments = [*command.split(), *QUICK.get(command, [])]
     text = _value(value, files, folder)
     for positional in _value_options(parser):
-        if not positional.option_strings and positional is not action and positional.nargs is None:
+        required = positional.nargs in (None, "+")  # one value each ("+": `show WORLD...`)
+        if not positional.option_strings and positional is not action and required:
             arguments.append(_positionals(command, files)[positional.dest])
     if action is None:
         arguments.append(value)

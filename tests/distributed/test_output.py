@@ -41,3 +41,17 @@ def test_a_finished_run_is_read_back(tmp_path: Path) -> None:
 def test_a_damaged_run_file_means_the_run_is_not_done(tmp_path: Path, text: str) -> None:
     _write_run_file(tmp_path, text)
     assert read_finished_run(str(tmp_path), SETTING) is None
+
+
+def test_a_task_output_prints_its_files_by_name_and_size_not_their_bytes() -> None:
+    """A search loop that prints what ``train_and_evaluate`` returned sees the result and the
+    files' sizes, not megabytes of a table's bytes."""
+    from mazesim.distributed import TaskOutput
+
+    output = TaskOutput(
+        {"success_rate": 0.75}, {"tables.npz": b"\0" * 1_000_000, "run.json": b"{}"}
+    )
+    shown = repr(output)
+    assert len(shown) < 200, shown
+    assert "'success_rate': 0.75" in shown
+    assert "'tables.npz': <1,000,000 bytes>" in shown and "'run.json': <2 bytes>" in shown

@@ -9,7 +9,13 @@ import pytest
 
 pytest.importorskip("pettingzoo", reason="needs mazesim[marl] (make marl-deps)")
 
-from pettingzoo.test import api_test, parallel_api_test, parallel_seed_test, seed_test  # noqa: E402
+from pettingzoo.test import (  # noqa: E402
+    api_test,
+    parallel_api_test,
+    parallel_seed_test,
+    seed_test,
+    state_test,
+)
 
 from mazesim.marl import aggregation_v0, maze_goals_v0  # noqa: E402
 
@@ -39,6 +45,28 @@ def test_aec_api_and_seed_tests_pass(name: str) -> None:
     module, options = TASKS[name]
     api_test(module.env(**options), num_cycles=40)
     seed_test(lambda: module.env(**options), num_cycles=40)
+
+
+@pytest.mark.parametrize("name", TASKS)
+def test_the_global_state_is_every_observation_then_every_true_pose(name: str) -> None:
+    """PettingZoo's ``state()``/``state_space`` (a centralised critic's input): PettingZoo's
+    own state tests on the AEC env, ``parallel_api_test`` with the state present, and the
+    state's layout read back from the observations and the batch's poses."""
+    module, options = TASKS[name]
+    state_test(module.env(**options), module.parallel_env(**options), num_cycles=30)
+    env = module.parallel_env(**options)
+    parallel_api_test(env, num_cycles=30)
+    observations, _ = env.reset(seed=5)
+    for _ in range(3):
+        observations, *_ = env.step({agent: np.array([0.6, 1.0]) for agent in env.agents})
+    state = env.state()
+    width = env.observation_space(env.possible_agents[0]).shape[0]
+    robots = len(env.possible_agents)
+    assert env.state_space.contains(state) and state.shape == (robots * (width + 3),)
+    seen = np.concatenate([observations[agent] for agent in env.possible_agents])
+    np.testing.assert_array_equal(state[: robots * width], seen)
+    np.testing.assert_array_equal(state[robots * width :], env.batch.poses[0].ravel())
+    assert not np.array_equal(state[robots * width :], np.zeros(robots * 3))
 
 
 @pytest.mark.parametrize("name", TASKS)

@@ -76,6 +76,10 @@ COMMANDS: dict[str, tuple[str, str]] = {
         "mazesim.cli.show",
         "draw a world (built-in, .toml or .wbt) into a PNG with a legend",
     ),
+    "info": (
+        "mazesim.cli.info",
+        "print what a bug report needs: versions, platform, installed packages",
+    ),
 }
 
 #: Exit code of a run that failed on an error of the user's input or of the file system.

@@ -30,6 +30,7 @@ __all__ = [
     "ProgressDisplay",
     "add_progress_option",
     "clock_time",
+    "draws_in_place",
     "progress_display",
 ]
 
@@ -77,6 +78,18 @@ class _Stage:
         self.bar: Any = None
 
 
+def draws_in_place(stream: Any) -> bool:
+    """Whether ``stream`` shows a line redrawn in place (``\\r``): a terminal, or the output of
+    a Jupyter (IPython kernel) cell, whose streams are not terminals (``isatty()`` is False)
+    but redraw a carriage-returned line as one."""
+    if type(stream).__module__.split(".")[0] == "ipykernel":
+        return True
+    try:
+        return bool(stream.isatty())
+    except (AttributeError, ValueError):
+        return False
+
+
 class ProgressDisplay(Closing):
     """Progress of a long run on stderr: ``display(stage, done, total)``.
 
@@ -86,7 +99,8 @@ class ProgressDisplay(Closing):
         unit: What is counted (``"steps"``, ``"readings"``...), unless ``units`` names the
             stage's.
         units: The unit of each stage, by stage name.
-        terminal: Whether ``stream`` is a terminal; by default ``stream.isatty()``.
+        terminal: Whether ``stream`` draws bars; by default :func:`draws_in_place` (a terminal
+            or a Jupyter cell's output).
         bar_delay_s: Seconds a stage runs before its bar appears on a terminal (by default
             :data:`BAR_DELAY_S`).
         plain_every_s: Seconds between plain lines when ``stream`` is not a terminal (by
@@ -129,12 +143,10 @@ class ProgressDisplay(Closing):
 
     @property
     def terminal(self) -> bool:
-        """Whether the display draws bars (a terminal) or plain lines."""
+        """Whether the display draws bars (a terminal, or a Jupyter notebook's output, which
+        redraws a line as a terminal does) or plain lines."""
         if self._terminal is None:
-            try:
-                self._terminal = bool(self.stream.isatty())
-            except (AttributeError, ValueError):
-                self._terminal = False
+            self._terminal = draws_in_place(self.stream)
         return self._terminal
 
     def unit_of(self, stage: str) -> str:

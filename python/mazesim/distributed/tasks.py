@@ -102,6 +102,12 @@ class TaskOutput:
     result: dict[str, Any]
     files: dict[str, bytes]
 
+    def __repr__(self) -> str:
+        """The result in full and each file by its name and size (a run's tables are megabytes
+        of bytes, which a printed output would otherwise pour onto the screen)."""
+        files = ", ".join(f"{name!r}: <{len(data):,} bytes>" for name, data in self.files.items())
+        return f"TaskOutput(result={self.result!r}, files={{{files}}})"
+
 
 Task = Callable[["Setting", int], TaskOutput]
 

@@ -4,7 +4,9 @@ Agents are named ``epuck_0`` ... ``epuck_{R-1}`` (the robots' names in the world
 leaves ``env.agents`` on the step that terminates or truncates it (PettingZoo's convention); its
 robot then stands still, still an obstacle to the others, until the episode ends with the last
 agent. Actions are ``Box(-1, 1, (2,))`` wheel speed fractions of the motor limit (clipped);
-observations and rewards are the task's (:mod:`mazesim.marl.tasks`).
+observations and rewards are the task's (:mod:`mazesim.marl.tasks`). ``state()`` is the global
+state a centralised critic takes (PettingZoo's ``state`` and ``state_space``): every robot's
+observation, then every robot's true pose ``x, y, yaw`` (metres, radians), in agent order.
 """
 
 from __future__ import annotations
@@ -71,6 +73,10 @@ class MultiRobotParallelEnv(ParallelEnv[str, Observation, npt.NDArray[np.float32
         self._observation_space = gymnasium.spaces.Box(-limit, limit, (width,), np.float32)
         self._action_space = gymnasium.spaces.Box(-1.0, 1.0, (2,), np.float32)
         self._observation_spaces = {a: self._observation_space for a in self.possible_agents}
+        robots = len(self.possible_agents)
+        #: The global state's space: R observations, then R poses (PettingZoo's convention).
+        self.state_space = gymnasium.spaces.Box(-limit, limit, (robots * (width + 3),), np.float32)
+        self._observations = np.zeros((robots, width), np.float32)
         self._action_spaces = {a: self._action_space for a in self.possible_agents}
         self._renderer: SwarmRenderer | None = None
         self._closed = False
@@ -97,6 +103,7 @@ class MultiRobotParallelEnv(ParallelEnv[str, Observation, npt.NDArray[np.float32
         seed = check_seed(seed)
         check_options(options)
         observations, _ = self.batch.reset(seed)
+        self._observations[...] = observations[0]
         self.agents = list(self.possible_agents)
         self._was_reset = True
         self._renderer = None
@@ -158,6 +165,7 @@ class MultiRobotParallelEnv(ParallelEnv[str, Observation, npt.NDArray[np.float32
                     )
                 wheels[0, i] = action
         observations, rewards, terminations, truncations, infos = self.batch.step(wheels)
+        self._observations[...] = observations[0]
         live = self.agents
         index = {a: self.possible_agents.index(a) for a in live}
         result = (
@@ -169,6 +177,21 @@ class MultiRobotParallelEnv(ParallelEnv[str, Observation, npt.NDArray[np.float32
         )
         self.agents = [a for a in live if not (result[2][a] or result[3][a])]
         return result
+
+    def state(self) -> npt.NDArray[np.float32]:
+        """The global state (``state_space``): every robot's last observation, an ended robot's
+        included, then every robot's true pose ``x, y, yaw``, in agent order; one flat float32
+        array of ``R * (width + 3)`` values, a copy.
+
+        Raises:
+            ResetNeededError: Before the first ``reset``.
+            EnvClosedError: The env is closed.
+        """
+        self._check_open()
+        if self.batch.simulator is None:
+            raise ResetNeededError("expected reset() before state()")
+        poses = self.batch.poses[0].astype(np.float32)
+        return np.concatenate([self._observations.ravel(), poses.ravel()])
 
     def render(self) -> npt.NDArray[np.uint8] | None:
         """A top-down RGB picture (``render_mode="rgb_array"``), else None."""

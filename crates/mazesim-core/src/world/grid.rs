@@ -37,6 +37,28 @@ pub struct GridProblem {
 const CELL_WIDTH: &str = " (each cell is three characters wide: corners '+' and side walls '|' at \
 every third column, from the first)";
 
+/// What a drawing `width` characters wide (not 3 * columns + 1) is told: how a row's width
+/// follows from its cells, and the widths nearest to the one found, with their columns.
+fn width_problem(width: usize) -> String {
+    let below = (width.saturating_sub(1) / 3).max(1);
+    let nearest = if width <= 4 {
+        "4 (1 column)".to_string()
+    } else {
+        format!(
+            "{} ({below} column{}) or {} ({} columns)",
+            3 * below + 1,
+            if below == 1 { "" } else { "s" },
+            3 * below + 4,
+            below + 1
+        )
+    };
+    format!(
+        "expected rows 3 * columns + 1 characters wide (each cell takes 3 characters, '+--' or \
+         '+  ' in a wall row, then the row's last '+': \"+--+--+\" is 2 columns, 7 characters), \
+         found {width}; the nearest widths: {nearest}"
+    )
+}
+
 /// Refuses cell walls that do not fit their cells: a wall must be thinner than the cell it
 /// bounds, or neighbouring walls overlap and no corridor is left between them. The one check of
 /// a cell maze's sizes, for a generated maze and a drawn one (`[grid]`) alike.
@@ -96,13 +118,7 @@ impl CellMaze {
             .max()
             .unwrap_or(0);
         if width < 4 || (width - 1) % 3 != 0 {
-            return Err(problem(
-                first,
-                width,
-                format!(
-                    "expected rows 3 * columns + 1 characters wide (\"+--+--+\"), found {width}"
-                ),
-            ));
+            return Err(problem(first, width, width_problem(width)));
         }
         let cols = (width - 1) / 3;
         let rows = body.len() / 2;

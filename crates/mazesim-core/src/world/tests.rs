@@ -352,6 +352,27 @@ fn a_grid_without_its_sizes_has_the_generated_mazes_cells_and_walls() {
 }
 
 #[test]
+fn a_grid_of_the_wrong_width_names_the_columns_of_its_example_and_the_nearest_widths() {
+    // 9 characters: neither 2 columns (7) nor 3 (10); "+--+--+" is the 2-column example.
+    let (_, field, message) =
+        format_error("[grid]\nmap = \"\"\"\n+--+--+--\n|S     G|\n+--+--+--\n\"\"\"\n");
+    assert_eq!(field, "grid.map");
+    assert!(
+        message.contains("\"+--+--+\" is 2 columns, 7 characters"),
+        "{message}"
+    );
+    assert!(
+        message.contains("found 9; the nearest widths: 7 (2 columns) or 10 (3 columns)"),
+        "{message}"
+    );
+    let (_, _, narrow) = format_error("[grid]\nmap = \"\"\"\n+-+\n|S|\n+-+\n\"\"\"\n");
+    assert!(
+        narrow.ends_with("found 3; the nearest widths: 4 (1 column)"),
+        "{narrow}"
+    );
+}
+
+#[test]
 fn a_misaligned_grid_row_says_how_wide_a_cell_is() {
     let (line, field, message) =
         format_error("[grid]\nmap = \"\"\"\n+--+--+\n|S   G|\n+--+-+\n\"\"\"\n");
