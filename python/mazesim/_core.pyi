@@ -346,6 +346,9 @@ class RobotProfile:
         """(N, 3) array: x, y, heading of each distance sensor in the robot frame."""
     def distance_sensor_limits(self) -> npt.NDArray[np.float64]:
         """(N, 2) array: nearest and farthest distance in metres of each distance sensor's table."""
+    def distance_sensor_table(self, index: int) -> npt.NDArray[np.float64]:
+        """(K, 3) array: distance sensor ``index``'s table, rows of distance in metres, noise-free
+        reading off a white wall and relative noise."""
     def distance_from_reading(self, index: int, reading: float) -> float:
         """Distance in metres at which distance sensor ``index`` reads ``reading`` off a white
         wall (its table inverted, clamped to the table's distances)."""

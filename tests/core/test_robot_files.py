@@ -92,3 +92,16 @@ def test_a_folder_or_a_broken_profile_file_says_what_it_is(tmp_path: Path) -> No
         RobotProfile.load(str(broken))
     with pytest.raises(mazesim.WrongTypeError, match="found an int"):
         RobotProfile.load(3)  # type: ignore[arg-type]
+
+
+def test_a_distance_sensors_table_is_the_profile_files_rows(tmp_path: Path) -> None:
+    text = RobotProfile.builtin("seed").to_toml()
+    assert "[0.03, 3.03, 0.005], [0.035, 2.78, 0.005]" in text
+    edited = tmp_path / "edited-seed.toml"
+    edited.write_text(text.replace("[0.03, 3.03, 0.005]", "[0.03, 3.5, 0.005]"))
+    table = RobotProfile.load(edited).distance_sensor_table(0)
+    assert table.shape == (18, 3)
+    assert table[:2].tolist() == [[0.03, 3.5, 0.005], [0.035, 2.78, 0.005]]
+    assert RobotProfile.builtin("seed").distance_sensor_table(5)[0].tolist() == [0.03, 3.03, 0.005]
+    with pytest.raises(mazesim.InvalidArgumentError, match="below 6, found 6"):
+        RobotProfile.builtin("seed").distance_sensor_table(6)

@@ -12,6 +12,7 @@ from mazesim.learn.discretise import (
     LEVEL_EDGES_CM,
     NUM_STATES,
     SENSOR_ORDER,
+    SHARP_TABLE,
     decode_state,
     distance_levels,
     distances_and_levels,
@@ -187,3 +188,10 @@ def test_corridors_and_corners_never_reverses() -> None:
     begin_subtask(policy, 1, SubTask.RIGHT)
     actions = policy.act_on_distances(np.full((2, 6), 30.0), poses, np.zeros(2, dtype=np.int64))
     assert actions.tolist() == [3, backward]
+
+
+def test_the_sharp_table_is_the_seed_profiles() -> None:
+    rows = mazesim.RobotProfile.builtin("seed").distance_sensor_table(0)[:, :2].tolist()
+    assert [list(row) for row in SHARP_TABLE] == rows
+    assert SHARP_TABLE[0] == (0.03, 3.03) and SHARP_TABLE[-1] == (0.40, 0.31)
+    assert all(type(value) is float for row in SHARP_TABLE for value in row)

@@ -58,6 +58,21 @@ def test_a_run_round_trips_within_its_units(tmp_path: Path) -> None:
     assert first.subtasks is not None and np.array_equal(second.subtasks, first.subtasks)
 
 
+def test_an_episode_the_run_lacks_is_refused_before_a_video_is_begun(tmp_path: Path) -> None:
+    from mazesim.replay.video import video_frames, write_video
+
+    run = long_run(5)
+    assert run.episode(0) is run.episodes[0]
+    for bad in (1, -1):
+        with pytest.raises(mazesim.InvalidArgumentError, match=f"from 0 to 0, found {bad}"):
+            run.episode(bad)
+    with pytest.raises(mazesim.InvalidArgumentError, match="from 0 to 0, found 1"):
+        next(video_frames(run, episode=1))
+    with pytest.raises(mazesim.InvalidArgumentError, match="from 0 to 0, found 1"):
+        write_video(run, tmp_path / "run.gif", episode=1)
+    assert not list(tmp_path.iterdir())
+
+
 def test_gzip_run_files_are_read_by_their_content(tmp_path: Path) -> None:
     run = long_run(20)
     save_run(run, tmp_path / "run.json.gz")

@@ -177,10 +177,15 @@ pub fn given_profiles(obj: &Bound<'_, PyAny>) -> PyResult<Vec<Option<Arc<RobotPr
 }
 
 /// The error for a sensor index at or above the robot's `count` sensors of that `kind`.
-fn sensor_index_error(kind: &str, count: usize, index: usize) -> PyErr {
-    crate::errors::to_py(mazesim_core::Error::InvalidArgument(format!(
-        "expected a {kind} sensor index below {count}, found {index}"
-    )))
+/// The `kind` sensor at `index` of `sensors`, or an error naming how many there are.
+fn sensor_at<'a, T>(sensors: &'a [T], kind: &str, index: IntArg) -> PyResult<&'a T> {
+    let index = index.count("index", usize::MAX)?;
+    sensors.get(index).ok_or_else(|| {
+        crate::errors::to_py(mazesim_core::Error::InvalidArgument(format!(
+            "expected a {kind} sensor index below {}, found {index}",
+            sensors.len()
+        )))
+    })
 }
 
 /// The largest `value` of any of `tables` (0 without a table).
@@ -451,16 +456,25 @@ impl PyRobotProfile {
         enter(|| rows_to_array(py, limits))
     }
 
+    /// (K, 3) array: distance sensor `index`'s table, rows of distance in metres, noise-free
+    /// reading off a white wall and relative noise.
+    fn distance_sensor_table<'py>(
+        &self,
+        py: Python<'py>,
+        index: IntArg,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        enter(|| {
+            let sensor = sensor_at(&self.inner.distance_sensors, "distance", index)?;
+            rows_to_array(py, sensor.model.table.rows())
+        })
+    }
+
     /// Distance in metres at which distance sensor `index` reads `reading` off a white wall
     /// (its table inverted, clamped to the table's distances).
     fn distance_from_reading(&self, index: IntArg, reading: Real) -> PyResult<f64> {
         enter(|| {
-            let index = index.count("index", usize::MAX)?;
+            let sensor = sensor_at(&self.inner.distance_sensors, "distance", index)?;
             let reading = reading.value("reading")?;
-            let sensors = &self.inner.distance_sensors;
-            let sensor = sensors
-                .get(index)
-                .ok_or_else(|| sensor_index_error("distance", sensors.len(), index))?;
             if !reading.is_finite() {
                 return Err(crate::errors::to_py(mazesim_core::Error::InvalidArgument(
                     format!(
@@ -476,12 +490,8 @@ impl PyRobotProfile {
     /// Noise-free reading of ground sensor `index` over a floor of reflectance factor `f`.
     fn ground_reading(&self, index: IntArg, reflectance: Real) -> PyResult<f64> {
         enter(|| {
-            let index = index.count("index", usize::MAX)?;
+            let sensor = sensor_at(&self.inner.ground_sensors, "ground", index)?;
             let reflectance = reflectance.value("reflectance")?;
-            let sensors = &self.inner.ground_sensors;
-            let sensor = sensors
-                .get(index)
-                .ok_or_else(|| sensor_index_error("ground", sensors.len(), index))?;
             if !(reflectance > 0.0 && reflectance <= 1.0) {
                 return Err(crate::errors::to_py(mazesim_core::Error::InvalidArgument(
                     format!("expected a reflectance factor in (0, 1], found {reflectance}"),

@@ -36,6 +36,7 @@ from __future__ import annotations
 import numpy as np
 import numpy.typing as npt
 
+from mazesim._core import RobotProfile
 from mazesim.errors import InvalidArgumentError
 
 __all__ = [
@@ -65,28 +66,11 @@ LEVEL_EDGES_CM: tuple[float, ...] = (7.0, 13.0, 20.0)
 NUM_LEVELS = len(LEVEL_EDGES_CM) + 1
 #: Number of lower-level states, ``4**6``.
 NUM_STATES = NUM_LEVELS**NUM_SENSORS
-
-#: The Sharp GP2Y0A41SK0F table of the ``seed`` robot profile (``robots/seed.toml``): distance in
-#: metres and the output in volts, the volts falling as the distance grows.
-SHARP_TABLE: tuple[tuple[float, float], ...] = (
-    (0.03, 3.03),
-    (0.035, 2.78),
-    (0.04, 2.72),
-    (0.05, 2.33),
-    (0.06, 2.01),
-    (0.07, 1.76),
-    (0.08, 1.55),
-    (0.09, 1.40),
-    (0.10, 1.25),
-    (0.12, 1.04),
-    (0.14, 0.92),
-    (0.16, 0.82),
-    (0.18, 0.73),
-    (0.20, 0.66),
-    (0.25, 0.53),
-    (0.30, 0.42),
-    (0.35, 0.37),
-    (0.40, 0.31),
+#: The Sharp GP2Y0A41SK0F table of the ``seed`` robot profile (``robots/seed.toml``), read from
+#: it: distance in metres and the output in volts, the volts falling as the distance grows.
+SHARP_TABLE: tuple[tuple[float, float], ...] = tuple(
+    (float(metres), float(volts))
+    for metres, volts, _ in RobotProfile.builtin("seed").distance_sensor_table(0)
 )
 _PLACE_VALUES = NUM_LEVELS ** np.arange(NUM_SENSORS, dtype=np.int64)
 

@@ -48,7 +48,7 @@ import numpy.typing as npt
 from mazesim._atomic import atomic_file
 from mazesim._core import RobotProfile, World, robot_profile_names
 from mazesim._paths import found_kind, read_input
-from mazesim.errors import MazesimError, RunFormatError, _shown
+from mazesim.errors import InvalidArgumentError, MazesimError, RunFormatError, _shown
 from mazesim.replay.run_fields import RunFields
 
 __all__ = [
@@ -321,6 +321,18 @@ class RecordedRun:
     def sensor_names(self) -> list[str]:
         """Names of the readings' columns: the distance sensors, then the ground sensors."""
         return _reading_names(self.robot_profile)
+
+    def episode(self, index: int) -> RecordedEpisode:
+        """Episode ``index``, counted from 0.
+
+        Raises:
+            InvalidArgumentError: The run has no such episode.
+        """
+        if not 0 <= index < len(self.episodes):
+            raise InvalidArgumentError(
+                f"expected an episode from 0 to {len(self.episodes) - 1}, found {index}"
+            )
+        return self.episodes[index]
 
     def as_json(self) -> dict[str, Any]:
         """The run as the JSON object of its file."""

@@ -88,12 +88,7 @@ def video_frames(
     run: RecordedRun, episode: int = 0, size: int = 400, steps: range | None = None
 ) -> Iterator[npt.NDArray[np.uint8]]:
     """The (size, size, 3) uint8 frames of an episode (every frame, or those of ``steps``)."""
-    if not 0 <= episode < len(run.episodes):
-        raise InvalidArgumentError(
-            f"expected an episode from 0 to {len(run.episodes) - 1}, found {episode}"
-        )
-
-    recorded = run.episodes[episode]
+    recorded = run.episode(episode)
     profile = run.robot_profile
     renderer = TopDownRenderer(run.world, profile, (size, size), profile.distance_sensor_range)
     drawn = None  # the walls drawn: the world's, or those of a change while the run ran
@@ -153,11 +148,7 @@ def write_video(
     suffix = video_format(path)
     if size % 16:
         raise InvalidArgumentError(f"expected a frame size that is a multiple of 16, found {size}")
-    if not 0 <= episode < len(run.episodes):
-        raise InvalidArgumentError(
-            f"expected an episode from 0 to {len(run.episodes) - 1}, found {episode}"
-        )
-    steps = video_frame_steps(run, run.episodes[episode], suffix)
+    steps = video_frame_steps(run, run.episode(episode), suffix)
     fps = 1000.0 / (run.control_step_ms * steps.step)
     frames = video_frames(run, episode, size, steps)
     if progress is not None:

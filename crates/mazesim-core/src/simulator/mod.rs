@@ -3,6 +3,7 @@
 mod neighbours;
 mod rig;
 mod shared_scene;
+#[macro_use]
 mod snapshot;
 
 pub use neighbours::{Neighbour, Others, ROBOT_CONTACT_GAP, ROBOT_REFLECTANCE};
@@ -118,44 +119,48 @@ impl Default for SimConfig {
     }
 }
 
-/// A robot in a world.
-pub struct Simulator {
-    world: Arc<World>,
-    /// What a step reads of the robot, shared with the other simulators of its profile.
-    rig: Arc<Rig>,
-    config: SimConfig,
-    physics_steps: u32,
-    dt: f64,
-    body: Body,
-    rng: Rng,
-    pose: [f32; 3],
-    /// Sine and cosine of the yaw.
-    heading: [f32; 2],
-    /// Per distance sensor: what its ray met at the last sensor reading.
-    ray_hits: Vec<Option<RayHit>>,
-    /// Per ground sensor: its reader of the world's floor.
-    ground_readers: Vec<GroundReader>,
-    time: f64,
-    steps: u64,
-    collisions: u64,
-    colliding: bool,
-    /// Touching a wall now.
-    touching: bool,
-    /// Touching another robot now (always false in a world of one robot).
-    touching_robot: bool,
-    clearance: f32,
-    distance_travelled: f64,
-    wheel_speeds: [f32; 2],
-    wheel_angles: [f64; 2],
-    distance_readings: Vec<f32>,
-    ground_readings: Vec<f32>,
-    tracker: CrossingTracker,
-    crossings: Vec<Crossing>,
-    last_crossing: i32,
-    /// Start pose used by `reset` instead of the world's, when set.
-    start_override: Option<[f32; 3]>,
-    /// The goal disc `set_goal` gave, instead of the world's.
-    goal_override: Option<Goal>,
+simulator_fields! {
+    /// A robot in a world.
+    pub struct Simulator {
+        world: Arc<World>,
+        /// What a step reads of the robot, shared with the other simulators of its profile.
+        rig: Arc<Rig>,
+        config: SimConfig,
+        physics_steps: u32,
+        dt: f64,
+        body: Body,
+        /// Sine and cosine of the yaw.
+        heading: [f32; 2],
+        /// Touching another robot now (always false in a world of one robot).
+        touching_robot: bool,
+        /// The goal disc `set_goal` gave, instead of the world's.
+        goal_override: Option<Goal>,
+    }
+    saved {
+        rng: Rng,
+        pose: [f32; 3],
+        /// Per distance sensor: what its ray met at the last sensor reading.
+        ray_hits: Vec<Option<RayHit>>,
+        /// Per ground sensor: its reader of the world's floor.
+        ground_readers: Vec<GroundReader>,
+        time: f64,
+        steps: u64,
+        collisions: u64,
+        colliding: bool,
+        /// Touching a wall now.
+        touching: bool,
+        clearance: f32,
+        distance_travelled: f64,
+        wheel_speeds: [f32; 2],
+        wheel_angles: [f64; 2],
+        distance_readings: Vec<f32>,
+        ground_readings: Vec<f32>,
+        tracker: CrossingTracker,
+        crossings: Vec<Crossing>,
+        last_crossing: i32,
+        /// Start pose used by `reset` instead of the world's, when set.
+        start_override: Option<[f32; 3]>,
+    }
 }
 
 impl Simulator {

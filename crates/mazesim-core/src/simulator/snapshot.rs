@@ -23,15 +23,10 @@
 //! tracker and crossings, the last readings and the ground sensors' caches.
 
 use postcard::ser_flavors::Flavor;
-use serde::{Deserialize, Serialize};
 
-use super::Simulator;
-use crate::crossing::{Crossing, CrossingTracker};
+use super::{Simulator, State};
 use crate::error::{Error, Result};
 use crate::fingerprint::{fnv1a, fnv1a_extend};
-use crate::rng::Rng;
-use crate::sensors::GroundReader;
-use crate::world::{Goal, RayHit};
 
 const MAGIC: &[u8; 8] = b"MZSNAPSH";
 
@@ -41,14 +36,28 @@ pub const SNAPSHOT_VERSION: u32 = 2;
 /// Bytes of the fixed part of the header (before the names).
 const FIXED_HEADER: usize = 8 + 4 + 8 + 8 + 4 + 1 + 8 + 8;
 
-/// Declares the state outside the body once: `State`, its serde data (the seed first, the
-/// goal set by `set_goal` last, the simulator's own fields of those names between, in this
-/// order, which is the payload's), what a snapshot takes of a simulator and what a restore puts
+/// Declares the simulator once: `Simulator` with its fields and those of `saved` (the state
+/// outside the body, in the payload's order), and of those the snapshot's `State` (the seed first,
+/// the goal set by `set_goal` last), what a snapshot takes of a simulator and what a restore puts
 /// back.
-macro_rules! saved_fields {
-    ($($field:ident: $t:ty,)*) => {
+macro_rules! simulator_fields {
+    (
+        $(#[$doc:meta])*
+        pub struct Simulator {
+            $($(#[$kept_doc:meta])* $kept:ident: $kept_t:ty,)*
+        }
+        saved {
+            $($(#[$field_doc:meta])* $field:ident: $t:ty,)*
+        }
+    ) => {
+        $(#[$doc])*
+        pub struct Simulator {
+            $($(#[$kept_doc])* $kept: $kept_t,)*
+            $($(#[$field_doc])* $field: $t,)*
+        }
+
         /// The state outside the body, as serde data.
-        #[derive(Serialize, Deserialize)]
+        #[derive(serde::Serialize, serde::Deserialize)]
         struct State {
             seed: u64,
             $($field: $t,)*
@@ -78,28 +87,6 @@ macro_rules! saved_fields {
             }
         }
     };
-}
-
-saved_fields! {
-    rng: Rng,
-    pose: [f32; 3],
-    ray_hits: Vec<Option<RayHit>>,
-    ground_readers: Vec<GroundReader>,
-    time: f64,
-    steps: u64,
-    collisions: u64,
-    colliding: bool,
-    touching: bool,
-    clearance: f32,
-    distance_travelled: f64,
-    wheel_speeds: [f32; 2],
-    wheel_angles: [f64; 2],
-    distance_readings: Vec<f32>,
-    ground_readings: Vec<f32>,
-    tracker: CrossingTracker,
-    crossings: Vec<Crossing>,
-    last_crossing: i32,
-    start_override: Option<[f32; 3]>,
 }
 
 /// What the header says, read back.
