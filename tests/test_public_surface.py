@@ -144,6 +144,7 @@ def refusal_calls(entry: EntryPoint) -> list[dict[str, Any]]:
                         "positional": list(entry.positional),
                         "args": {**declared.valid, name: key},
                         "must_refuse": True,
+                        "must_list_names": key == "unknown_name",
                     }
                 )
     return calls
@@ -191,7 +192,14 @@ def failures_of(plans: list[dict[str, Any]], results: list[dict[str, Any]]) -> l
             failures.append(f"{plan}: {result['what']}")
         elif plan.get("must_refuse") and ran:
             failures.append(f"{plan}: accepted a value it must refuse")
+        elif plan.get("must_list_names") and not _lists_names(result["what"]):
+            failures.append(f"{plan}: refused an unknown name without the known ones")
     return failures
+
+
+def _lists_names(what: str) -> bool:
+    """Whether a refusal of an unknown name says which names are known."""
+    return "UnknownNameError" in what or "one of" in what
 
 
 def plans_of(entries: list[EntryPoint], seed: int, calls: int) -> list[dict[str, Any]]:
@@ -335,6 +343,14 @@ def test_an_absurd_value_accepted_in_silence_is_a_failure() -> None:
     assert failures_of([must], [returned]) == [f"{must}: accepted a value it must refuse"]
     assert failures_of([must], [refused]) == []
     assert failures_of([{"path": "p", "args": {}}], [returned]) == []
+    # An unknown name is refused naming the known ones.
+    named = {**must, "must_list_names": True}
+    bare = {"how": "refused", "what": "mazesim.errors.InvalidArgumentError: unknown task"}
+    listed = {"how": "refused", "what": "mazesim.errors.UnknownNameError: no task 'x'; ..."}
+    assert failures_of([named], [bare]) == [
+        f"{named}: refused an unknown name without the known ones"
+    ]
+    assert failures_of([named], [listed]) == []
 
 
 def test_a_flood_of_output_or_a_message_quoting_a_value_whole_is_a_failure() -> None:

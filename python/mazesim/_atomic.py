@@ -1,11 +1,12 @@
 """Atomic file writes: write a temporary file in the target's folder, then rename it over.
 
-The temporary file of a target ``NAME`` is ``.NAME.<pid>-<token>.tmp`` in the same folder. A
-process killed in the middle of a write leaves it behind; the next write of the same target (or
-:func:`remove_stale_temporaries`) removes it when it is clearly orphaned: made by a process that
-no longer runs, by this process outside a write still in progress, or last changed before this
-process started. Temporaries of older mazesim versions (``.NAME.<8 characters>.tmp``) go when
-they are older than this process.
+The temporary file of a target ``NAME`` is ``.NAME.<pid>-<token>.tmp`` in the same folder, as
+the core's writer (``World.save``) names its own. A process killed in the middle of a write
+leaves it behind; the next write of the same target, by either writer (or
+:func:`remove_stale_temporaries`), removes it when it is clearly orphaned: made by a process that
+no longer runs, or by this process outside a write still in progress (this writer also removes
+one last changed before this process started). Temporaries of older mazesim versions
+(``.NAME.<8 characters>.tmp``) go when they are older than this process.
 
 The code runs on Linux, macOS and Windows: the temporary file is created with the user's usual
 permissions, so no ``os.fchmod`` is needed (Windows has none before Python 3.13); files are
@@ -34,7 +35,6 @@ from __future__ import annotations
 
 import contextlib
 import errno
-import hashlib
 import io
 import os
 import re
@@ -80,14 +80,23 @@ _ADDED = 1 + 1 + 10 + 1 + 8 + len(_SUFFIX) + 8
 _PROCESS_FILES = "/proc/"
 
 
+def _fnv1a(data: bytes) -> int:
+    """The 64-bit FNV-1a hash of ``data``, as the core's writer marks a cut name."""
+    value = 0xCBF29CE484222325
+    for byte in data:
+        value = ((value ^ byte) * 0x100000001B3) & 0xFFFFFFFFFFFFFFFF
+    return value
+
+
 def _temporary_stem(base: str) -> str:
     """The part of a temporary name taken from the target's name ``base``: the name itself, or
     when the temporary name would pass :data:`NAME_MAX` bytes, its start cut at a character
-    boundary and marked with ``~`` and 8 hex digits of a digest of the whole name."""
+    boundary and marked with ``~`` and the 16 hex digits of the FNV-1a hash of the whole name
+    (the same stem as the core's writer, so either removes the other's orphans)."""
     encoded = base.encode("utf-8", "surrogateescape")
     if len(encoded) + _ADDED <= NAME_MAX:
         return base
-    digest = hashlib.sha256(encoded).hexdigest()[:8]
+    digest = f"{_fnv1a(encoded):016x}"
     room = NAME_MAX - _ADDED - 1 - len(digest)
     start = encoded[:room].decode("utf-8", "ignore")
     return f"{start}~{digest}"

@@ -8,10 +8,10 @@ default and the only help text.
 
 from __future__ import annotations
 
-from dataclasses import field
+from dataclasses import field, fields
 from typing import Any
 
-__all__ = ["setting"]
+__all__ = ["check_choices", "setting"]
 
 
 def setting(
@@ -30,3 +30,15 @@ def setting(
         if value is not None:
             metadata[key] = value
     return field(default=default, metadata=metadata)
+
+
+def check_choices(settings: Any) -> None:
+    """Refuses a value of a field made by :func:`setting` with ``choices`` that is not one of
+    them, as its command-line option would (an ``UnknownNameError`` listing them): the choices
+    are declared once and hold for the dataclass made in Python too."""
+    from mazesim.errors import _known_name
+
+    for each in fields(settings):
+        choices = each.metadata.get("choices")
+        if choices is not None:
+            _known_name(getattr(settings, each.name), each.name, choices)

@@ -139,6 +139,20 @@ class UnknownNameError(MazesimError, LookupError):
         self.available = available
 
 
+def _known_name(value: object, what: str, known: list[str] | tuple[str, ...]) -> str:
+    """``value`` when it is one of the ``known`` names of ``what``; else the one refusal of a
+    name no registry of mazesim holds: an :class:`UnknownNameError` listing the known names
+    (``available``) and the closest as a "did you mean"."""
+    if isinstance(value, str) and value in known:
+        return value
+    names = [str(each) for each in known]
+    raise UnknownNameError(
+        f"expected {what} to be one of {', '.join(names)}; found {_shown(value)}",
+        available=names,
+        name=value if isinstance(value, str) else None,
+    )
+
+
 def _closest_name(name: str | None, available: list[str] | None, cutoff: float = 0.6) -> str | None:
     """The name of ``available`` closest to ``name`` (difflib's ratio of at least ``cutoff``), or
     else the one name that starts with what was typed, a shortened name (``avoid`` for
@@ -282,10 +296,17 @@ def _path_of(value: object, name: str) -> str:
     """
     found = _a_type(value)
     if isinstance(value, os.PathLike) and not isinstance(value, (str, bytes)):
+        # A path object's own code may fail in any way: it names no path, as the compiled
+        # core's path arguments say of it (never the object's own exception escaping).
         try:
             value = os.fspath(value)
-        except TypeError:
+        except TypeError:  # it gives neither str nor bytes
             value = None
+        except Exception as error:  # noqa: BLE001 - any failure of user code is the same refusal
+            raise WrongTypeError(
+                f"expected {name} to be a str or os.PathLike, found {found} whose __fspath__ "
+                f"raised {type(error).__name__}: {_shown(str(error))}"
+            ) from error
         if not isinstance(value, str):
             found += f" whose __fspath__ gives {_a_type(value)}"
     if not isinstance(value, str):

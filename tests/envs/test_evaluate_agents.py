@@ -12,7 +12,7 @@ import pytest
 pytest.importorskip("gymnasium")
 
 from mazesim.envs.baselines import FrontierExplorer, evaluate  # noqa: E402
-from mazesim.errors import InvalidArgumentError  # noqa: E402
+from mazesim.errors import InvalidArgumentError, UnknownNameError  # noqa: E402
 
 TASK = "mazesim/MazeFixed-v1"
 SHORT = {"episodes": 2, "max_episode_steps": 20}
@@ -81,5 +81,5 @@ def test_a_function_of_another_form_is_refused_naming_the_forms() -> None:
 
 @pytest.mark.parametrize("task", ["explore", "mazesim/NoSuchTask-v0", "gymnasium/CartPole"])
 def test_an_unknown_task_is_refused_naming_the_tasks(task: str) -> None:
-    with pytest.raises(InvalidArgumentError, match="expected a registered task id such as"):
+    with pytest.raises(UnknownNameError, match="expected evaluate's task to be one of mazesim/"):
         evaluate(task, lambda observation: 0, episodes=1)

@@ -198,7 +198,7 @@ MUST_REFUSE: dict[str, tuple[MustRefuse, ...]] = {
     ),
     # A point a query is asked about is a coordinate of the world: finite and bounded.
     "mazesim._core:World.floor_reflectance": (
-        MustRefuse({"y": "quarter"}, {"x": ("nan", "inf", "max_float")}),
+        MustRefuse({"y": "quarter"}, {"x": ("nan", "inf", "max_float", "complex_number")}),
         MustRefuse({"x": "quarter"}, {"y": ("minus_inf", "min_float")}),
     ),
     # Every template engine runs under one budget, and Ctrl-C (the walk's watchdog presses it)
@@ -233,10 +233,17 @@ MUST_REFUSE: dict[str, tuple[MustRefuse, ...]] = {
             {"x": "quarter", "y": "quarter"}, {"radius": ("nan", "inf", "max_float", "minus_one")}
         ),
     ),
-    "mazesim._core:SensingPerturbation": (MustRefuse({}, {"noise_scale": ("max_float", "nan")}),),
-    "mazesim._core:sharp_volts_to_cm": (
-        MustRefuse({}, {"volts": ("nan", "inf", "minus_one", "min_float")}),
+    # A complex number is no real one: refused where numpy's would convert with a warning.
+    "mazesim._core:SensingPerturbation": (
+        MustRefuse({}, {"noise_scale": ("max_float", "nan", "complex_number")}),
     ),
+    "mazesim._core:sharp_volts_to_cm": (
+        MustRefuse({}, {"volts": ("nan", "inf", "minus_one", "min_float", "complex_number")}),
+    ),
+    # A masked array's mask is not dropped: its masked entries are no numbers to drive by.
+    "mazesim._core:Simulator.step_robots": (MustRefuse({}, {"commands": ("masked_commands",)}),),
+    # A path object whose own code fails names no path: refused, its error not escaping.
+    "mazesim:load_world": (MustRefuse({}, {"name_or_path": ("raising_path",)}),),
     # The vector discretisers refuse what the scalar one refuses, NaN first of all (a NaN
     # reading compares false with every bound: one check, ``not (0 <= v < inf)``, in both).
     "mazesim._core:lower_level_states": (
@@ -264,14 +271,35 @@ MUST_REFUSE_BY_PARAMETER: dict[str, tuple[str, ...]] = {
     "samplingPeriod": ("period_2_40", "nan", "inf"),
 }
 
+#: The parameters that name a registered thing (an env id, a controller, a source of events, a
+#: render, action or reward mode, a shipped navigator's world), by name, declared once: a name
+#: is the domain's word for its value, the same in every signature (``task`` and ``subtask`` are
+#: not here: they are objects or indices in some). Each is given a name no registry holds, which
+#: must be refused with a message that lists the known names (``UnknownNameError``, or a
+#: message saying "expected one of").
+REGISTERED_NAME_PARAMETERS = (
+    "action_mode",
+    "controller",
+    "env_id",
+    "events",
+    "render_mode",
+    "reward_type",
+    "robot_model",
+    "world_name",
+)
+MUST_REFUSE_BY_PARAMETER.update(dict.fromkeys(REGISTERED_NAME_PARAMETERS, ("unknown_name",)))
+
 
 def refusals_of(entry: EntryPoint) -> tuple[MustRefuse, ...]:
     """The refusals ``entry`` must make: its own in :data:`MUST_REFUSE`, and one for each of its
-    parameters named in :data:`MUST_REFUSE_BY_PARAMETER` (when it has no other required one)."""
+    parameters named in :data:`MUST_REFUSE_BY_PARAMETER` (when it has no other required one, and
+    is a Python entry point: a command's words are drawn by the walk of the command line)."""
     by_name = tuple(
         MustRefuse({}, {name: keys})
         for name, keys in MUST_REFUSE_BY_PARAMETER.items()
-        if name in entry.parameters and set(entry.required) <= {name}
+        if name in entry.parameters
+        and set(entry.required) <= {name}
+        and not entry.path.startswith("cli:")
     )
     return MUST_REFUSE.get(entry.path, ()) + by_name
 

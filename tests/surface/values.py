@@ -56,6 +56,16 @@ class BytesPath:
         return f"BytesPath({self.path!r})"
 
 
+class RaisingPath:
+    """A path object whose ``__fspath__`` raises (a user's path class with a bug)."""
+
+    def __fspath__(self) -> str:
+        raise RuntimeError("this path object cannot say its path")
+
+    def __repr__(self) -> str:
+        return "RaisingPath()"
+
+
 class HugeMapping(dict[str, int]):
     """A mapping that says it holds a billion items (it holds one)."""
 
@@ -134,6 +144,17 @@ BUILDERS: dict[str, Any] = {
     "nan_array": lambda: np.full(4, np.nan),
     "empty_array": lambda: np.zeros((0,)),
     "big_array_shape": lambda: np.zeros((1, 1 << 20), np.float32),
+    # Numbers and arrays of unusual kinds: a complex number (numpy's converts to a float with
+    # a warning only), a masked array (whose mask a borrowed slice drops), numpy scalars of
+    # other dtypes, a 0-d array, a path object whose __fspath__ raises.
+    "complex_number": lambda: np.complex128(0.25 + 1j),
+    "complex_array": lambda: np.zeros((2, 2), np.complex128),
+    "masked_array": lambda: np.ma.masked_array(np.zeros((2, 2)), mask=True),
+    "float16": lambda: np.float16(0.25),
+    "datetime": lambda: np.datetime64("2020-01-01"),
+    "zero_d_array": lambda: np.array(0.25),
+    "memoryview": lambda: memoryview(bytes(16)),
+    "raising_path": RaisingPath,
     "folder": None,
     "missing_path": None,
     "garbage_file": None,
@@ -197,6 +218,10 @@ ABSURD: dict[str, Any] = {
     "nan_observations": lambda: np.full((2, 6), np.nan, np.float32),
     "inf_observations": lambda: np.full((2, 6), np.inf, np.float32),
     "packet_over_bound": lambda: b"x" * (16 * 1024 * 1024 + 1),
+    # A name no registry of mazesim holds (of an env, task, world, controller, robot...).
+    "unknown_name": lambda: "no-such-name-zz",
+    # The one robot's wheel speeds of seed-maze, all masked: no speed is given.
+    "masked_commands": lambda: np.ma.masked_array(np.zeros((1, 2)), mask=True),
 }
 
 #: Valid values the other parameters of a must-refuse call are given.

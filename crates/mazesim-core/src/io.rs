@@ -11,12 +11,9 @@
 use std::fs::{File, FileType, OpenOptions};
 use std::io::{ErrorKind, Read, Write};
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicU64, Ordering};
 
 use crate::error::{Error, Result};
 
-/// The longest file name, in bytes, of the usual file systems (ext4, XFS, APFS, NTFS).
-const NAME_MAX: usize = 255;
 /// The error number a refused kind of file carries (`EINVAL`: not a file that can be used).
 const NOT_A_FILE: i32 = 22;
 
@@ -148,10 +145,6 @@ fn too_long(source: &str, what: &str, limit: u64, found: &str) -> Error {
     Error::format_at(source, 1, 1, "(file)", message)
 }
 
-/// Temporary files made by this process so far: each write has its own, even when several
-/// threads write the same path at once.
-static TEMPORARY_FILES: AtomicU64 = AtomicU64::new(0);
-
 /// How an output path is written.
 enum Output {
     /// Replaced atomically: the regular file (existing or not) the path leads to.
@@ -247,23 +240,6 @@ fn write_stream(path: &Path, bytes: &[u8]) -> Result<()> {
     Ok(())
 }
 
-/// The part of a temporary name taken from the target's name: the name itself, or when the
-/// temporary name would pass [`NAME_MAX`] bytes, its start (cut at a character boundary) and
-/// `~` with 16 hex digits of a hash of the whole name.
-fn temporary_stem(name: &str) -> String {
-    // `.NAME.tmp-<pid, 10 digits>-<count, 20 digits>`
-    let added = 1 + 5 + 10 + 1 + 20;
-    if name.len() + added <= NAME_MAX {
-        return name.to_string();
-    }
-    let hash = crate::fingerprint::fnv1a(name.as_bytes());
-    let mut room = NAME_MAX - added - 17;
-    while !name.is_char_boundary(room) {
-        room -= 1;
-    }
-    format!("{}~{hash:016x}", &name[..room])
-}
-
 /// Writes `bytes` to `path` as the module's docs say: a regular file through a temporary file
 /// of its own in the same folder, synced, then renamed (a reader sees the old file or the new
 /// one whole, and two writers of one path, two threads of one process too, never write into
@@ -285,20 +261,18 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
         errno: None,
         reason: None,
     })?;
-    let tmp = dir.join(format!(
-        ".{}.tmp-{}-{}",
-        temporary_stem(&name.to_string_lossy()),
-        std::process::id(),
-        TEMPORARY_FILES.fetch_add(1, Ordering::Relaxed)
-    ));
+    let name = name.to_string_lossy();
+    crate::temporary_files::remove_orphans(dir, &name);
+    let temporary = crate::temporary_files::Temporary::new(dir, &name);
+    let tmp = &temporary.path;
     let result = (|| {
-        let mut f = OpenOptions::new().write(true).create_new(true).open(&tmp)?;
+        let mut f = OpenOptions::new().write(true).create_new(true).open(tmp)?;
         f.write_all(bytes)?;
         f.sync_all()?;
-        std::fs::rename(&tmp, &target)
+        std::fs::rename(tmp, &target)
     })();
     if result.is_err() {
-        let _ = std::fs::remove_file(&tmp);
+        let _ = std::fs::remove_file(tmp);
     }
     result.map_err(io_err)
 }

@@ -126,6 +126,12 @@ impl<'a, 'py> FromPyObject<'a, 'py> for Real {
         if class_name(&obj) == "bool" {
             return Ok(Real::Other(type_name(&obj)));
         }
+        // A complex number is not a real one, even when numpy's would convert (dropping its
+        // imaginary part with a warning only): a numpy complex scalar or 0-d array is refused as
+        // Python's own `complex` is.
+        if is_complex(&obj) {
+            return Ok(Real::Other(type_name(&obj)));
+        }
         if let Ok(v) = obj.extract::<f64>() {
             return Ok(Real::Number(v));
         }
@@ -140,6 +146,26 @@ impl<'a, 'py> FromPyObject<'a, 'py> for Real {
         let kind = type_name(&obj);
         Ok(Real::Other(kind))
     }
+}
+
+/// Whether `obj` is a complex number: Python's `complex` (numpy's `complex128` is one), or a
+/// numpy scalar or array whose dtype is of the complex kind. Only numpy's own objects are asked
+/// their dtype, so no other object's attribute code runs here.
+fn is_complex(obj: &Bound<'_, PyAny>) -> bool {
+    if obj.is_instance_of::<pyo3::types::PyComplex>() {
+        return true;
+    }
+    let from_numpy = obj
+        .get_type()
+        .module()
+        .map(|m| m.to_string().starts_with("numpy"))
+        .unwrap_or(false);
+    from_numpy
+        && obj
+            .getattr("dtype")
+            .and_then(|d| d.getattr("kind"))
+            .map(|k| k.to_string() == "c")
+            .unwrap_or(false)
 }
 
 /// An argument of a plain Python type (a str, bool, path or list of str) taken as any Python

@@ -153,10 +153,27 @@ fn usable_array<'a, 'py, T: Element>(
 ) -> PyResult<(&'a Bound<'py, PyArrayDyn<T>>, String)> {
     let expected = expected_array(dtype, shape);
     match obj.cast::<PyArrayDyn<T>>() {
+        Ok(_) if is_masked(obj) => Err(wrong_type(format!(
+            "expected {name} to be a plain numpy array of {expected}, found {}, whose mask \
+             would be dropped: pass array.filled(value) to say what its masked entries are",
+            describe(obj, &expected)
+        ))),
         Ok(array) if usable(array, shape) => Ok((array, expected)),
         Ok(_) => wrong(name, &expected, obj),
         Err(_) => wrong_kind(name, &expected, obj),
     }
+}
+
+/// Whether an array is numpy's masked array (`np.ma.MaskedArray` or a subclass): a slice
+/// borrowed from it would drop its mask, reading its masked entries as the numbers under them.
+fn is_masked(array: &Bound<'_, PyAny>) -> bool {
+    array.get_type().mro().iter().any(|class| {
+        class
+            .cast::<pyo3::types::PyType>()
+            .ok()
+            .and_then(|c| c.name().ok())
+            .is_some_and(|n| n.to_string() == "MaskedArray")
+    })
 }
 
 /// Whether `array` has `shape` and is C-contiguous and aligned, so that it can be a slice.

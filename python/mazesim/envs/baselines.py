@@ -37,7 +37,7 @@ from typing import Any, Protocol
 import numpy as np
 import numpy.typing as npt
 
-from mazesim.errors import InvalidArgumentError, _shown
+from mazesim.errors import InvalidArgumentError, _known_name, _shown
 
 __all__ = [
     "BaselineResult",
@@ -420,12 +420,9 @@ def evaluate(
             f"each), found {_shown(episodes)}"
         )
     if not isinstance(task, str) or task not in gymnasium.registry:
-        from mazesim.envs.tasks import TASKS
+        from mazesim.envs.tasks import task_ids
 
-        raise InvalidArgumentError(
-            f"evaluate: expected a registered task id such as "
-            f"{', '.join(t.env_id for t in TASKS)}; found {_shown(task)}"
-        )
+        _known_name(task, "evaluate's task", task_ids())
     size = (5, 5) if maze_size is None else (int(maze_size[0]), int(maze_size[1]))
     envs = gymnasium.make_vec(
         task, num_envs=episodes, include_pose=include_pose, maze_size=size, **options

@@ -52,7 +52,15 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any
 
-__all__ = ["GOAL_TASKS", "LONG_STEP_MS", "REWARD_THRESHOLD", "TASKS", "Task", "register_tasks"]
+__all__ = [
+    "GOAL_TASKS",
+    "LONG_STEP_MS",
+    "REWARD_THRESHOLD",
+    "TASKS",
+    "Task",
+    "register_tasks",
+    "task_ids",
+]
 
 
 #: The registered ``reward_threshold`` of every task: the default goal bonus.
@@ -238,3 +246,8 @@ def register_tasks() -> None:
             reward_threshold=task.reward_threshold,
             kwargs=dict(task.options),
         )
+
+
+def task_ids() -> list[str]:
+    """The id of every task mazesim registers, the goal-conditioned ones included, in order."""
+    return [task.env_id for task in (*TASKS, *GOAL_TASKS)]

@@ -338,7 +338,12 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
 
     def render(self) -> tuple[npt.NDArray[np.uint8], ...] | None:
         """One top-down (height, width, 3) uint8 image per environment, with
-        ``render_mode="rgb_array"``."""
+        ``render_mode="rgb_array"``.
+
+        Raises:
+            EnvClosedError: The env is closed (as the single env's ``render`` says).
+        """
+        self._open_batch()
         if self.render_mode is None:
             gymnasium.logger.warn(
                 'render() needs a render mode: make the env with render_mode="rgb_array"'

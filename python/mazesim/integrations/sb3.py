@@ -31,6 +31,7 @@ from mazesim.errors import (
     MissingDependencyError,
     WrongTypeError,
     _a_type,
+    _known_name,
     _shown,
 )
 
@@ -48,6 +49,7 @@ from stable_baselines3.common.vec_env.base_vec_env import (  # noqa: E402
 )
 
 from mazesim.envs.goal import MazeGoalVectorEnv  # noqa: E402
+from mazesim.envs.tasks import task_ids  # noqa: E402
 from mazesim.envs.vector import EPuckMazeVectorEnv  # noqa: E402
 
 __all__ = ["MazesimVecEnv", "make_vec_env"]
@@ -115,6 +117,7 @@ def make_vec_env(
     Raises:
         InvalidArgumentError: An option has a wrong type or value, or a single-env wrapper or
             another vector env class was asked for.
+        UnknownNameError: ``env_id`` is not a mazesim task (the message lists them).
     """
     if wrapper_class is not None or wrapper_kwargs:
         raise InvalidArgumentError(
@@ -128,6 +131,7 @@ def make_vec_env(
             f"expected vec_env_cls to be None or MazesimVecEnv, found {_shown(vec_env_cls)}"
         )
     keywords = {**(env_kwargs or {}), **(vec_env_kwargs or {}), **options}
+    _known_name(env_id, "env_id", task_ids())
     vector = gymnasium.make_vec(
         env_id,
         n_envs,

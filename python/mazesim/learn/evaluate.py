@@ -42,7 +42,7 @@ import numpy.typing as npt
 
 from mazesim._core import RobotProfile, World, generate_maze
 from mazesim._seeding import stream_seeds
-from mazesim._settings import setting
+from mazesim._settings import check_choices, setting
 from mazesim.actions import ACTION_CODES, ACTIONS
 from mazesim.batch import RobotChoice, first_profile
 from mazesim.episodes import (
@@ -166,6 +166,9 @@ class EvalSettings:
         "(docs/robots.md); the report's seed robot unless told",
         "NAME|PATH",
     )
+
+    def __post_init__(self) -> None:
+        check_choices(self)
 
     @property
     def sources(self) -> list[str]:

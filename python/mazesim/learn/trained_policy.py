@@ -17,7 +17,7 @@ import numpy.typing as npt
 
 from mazesim._core import World
 from mazesim.actions import ACTION_CODES
-from mazesim.errors import PolicyFormatError, UnknownNameError, _shown
+from mazesim.errors import PolicyFormatError, UnknownNameError, _known_name, _shown
 from mazesim.learn.subtasks import CONTROL_STEP_MS
 from mazesim.maze import world_hash
 
@@ -30,8 +30,15 @@ __all__ = [
 
 
 def shipped_policy_dir(world_name: str = "seed-maze") -> Path:
-    """The folder of the navigator shipped in the package for a built-in world."""
-    return Path(str(resources.files("mazesim.learn").joinpath("data", world_name)))
+    """The folder of the navigator shipped in the package for a built-in world.
+
+    Raises:
+        UnknownNameError: No navigator is shipped for ``world_name`` (the message lists those
+            that are).
+    """
+    data = resources.files("mazesim.learn").joinpath("data")
+    shipped = sorted(each.name for each in data.iterdir() if each.is_dir())
+    return Path(str(data.joinpath(_known_name(world_name, "world_name", shipped))))
 
 
 #: Navigators shipped beside the default one, by the name ``load_policy`` (and ``--policy``)

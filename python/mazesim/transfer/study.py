@@ -18,7 +18,7 @@ from dataclasses import dataclass
 
 from mazesim._core import World
 from mazesim.episodes import EVENT_SOURCES
-from mazesim.errors import InvalidArgumentError, _shown
+from mazesim.errors import InvalidArgumentError, _known_name
 from mazesim.learn.evaluate import navigator_for
 from mazesim.learn.tables import TrainedPolicy
 from mazesim.transfer.axes import AXES, Axis, Level, Setting
@@ -62,24 +62,19 @@ class StudyOptions:
     threads: int = 0
     odometry: str = "encoders"
 
+    def __post_init__(self) -> None:
+        _known_name(self.events, "events", EVENT_SOURCES)
+        _known_name(self.odometry, "odometry", ODOMETRY_SOURCES)
+
     def check(self) -> None:
-        """Raises :class:`InvalidArgumentError` on a setting out of range."""
+        """Raises :class:`InvalidArgumentError` on a setting out of range (an unknown source of
+        events or odometry is refused when the options are made)."""
         if not self.axes:
             raise InvalidArgumentError("expected at least one axis, found none")
         if self.episodes < 1 or self.max_steps < 1:
             raise InvalidArgumentError(
                 f"expected at least one episode and one step, found {self.episodes} episode(s) "
                 f"and {self.max_steps} step(s)"
-            )
-        if self.events not in EVENT_SOURCES:
-            raise InvalidArgumentError(
-                f"expected events from one of {', '.join(EVENT_SOURCES)}, found "
-                f"{_shown(self.events)}"
-            )
-        if self.odometry not in ODOMETRY_SOURCES:
-            raise InvalidArgumentError(
-                f"expected odometry from one of {', '.join(ODOMETRY_SOURCES)}, found "
-                f"{_shown(self.odometry)}"
             )
 
 
