@@ -70,7 +70,7 @@ def test_robots_ending_at_different_steps_leave_the_agents_one_by_one() -> None:
     assert np.array_equal(env.batch.poses, poses)
 
 
-def test_issue_33_steps_after_the_episode_answer_with_nothing_as_black_death_needs() -> None:
+def test_steps_after_the_episode_answer_with_nothing_as_black_death_needs() -> None:
     """SuperSuit's ``black_death_v3`` (PettingZoo's tutorials put it before a vector env) ends
     an episode only when a step answers every agent both terminated and truncated, so after
     robots that reached their goals it steps the env once more with the live agents' actions,

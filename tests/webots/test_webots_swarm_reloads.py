@@ -21,7 +21,7 @@ def _lines(logs: Path, name: str) -> list[list[str]]:
     return [line.split(" ", 2) for line in (logs / f"{name}.log").read_text().splitlines()]
 
 
-def test_issue_33_a_world_reload_restarts_every_controller_on_a_clock_back_at_0(
+def test_a_world_reload_restarts_every_controller_on_a_clock_back_at_0(
     tmp_path: Path,
 ) -> None:
     """The supervisor reloads the world at its 30th step (0.96 s): each of the three
