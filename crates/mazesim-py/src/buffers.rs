@@ -172,7 +172,7 @@ fn is_masked(array: &Bound<'_, PyAny>) -> bool {
             .cast::<pyo3::types::PyType>()
             .ok()
             .and_then(|c| c.name().ok())
-            .is_some_and(|n| n.to_string() == "MaskedArray")
+            .is_some_and(|n| n == "MaskedArray")
     })
 }
 
