@@ -18,7 +18,7 @@ from typing import TYPE_CHECKING, Any, TextIO
 from mazesim._figures import figure_file
 from mazesim._paths import file_name_of, refuse_overwriting_inputs, shell_command
 from mazesim.cli._help import examples
-from mazesim.errors import InvalidArgumentError
+from mazesim.errors import InvalidArgumentError, _shown
 
 if TYPE_CHECKING:
     from mazesim import World
@@ -94,8 +94,8 @@ def _refuse_shared_picture_names(worlds: list[tuple[str, str]]) -> None:
         if picture in given_as:
             raise InvalidArgumentError(
                 f"expected worlds of different names (each is drawn to NAME.png), found "
-                f"{given_as[picture]} and {name} both named {world_name!r}: show them one at a "
-                "time with -o, or give one of them another `name` in its file"
+                f"{given_as[picture]} and {name} both named {_shown(world_name)}: show them one "
+                "at a time with -o, or give one of them another `name` in its file"
             )
         given_as[picture] = name
 

@@ -696,7 +696,7 @@ class Motor(Device):
         """The wheel speed (rad/s) for the next step, the wheel being at ``angle``."""
         return motor_speed(self._target_position, self._velocity, self._max_velocity, angle)
 
-    def last_command(self, angle: float) -> WheelCommand:
+    def _last_command(self, angle: float) -> WheelCommand:
         """The motor's commands as they stand, the wheel being at ``angle``: what drives the
         wheel once the controller has ended (:mod:`mazesim.webots.last_commands`)."""
         return WheelCommand(self._target_position, self._velocity, self._max_velocity, angle)

@@ -404,7 +404,7 @@ def _outcome(
         quit_requested=simulation.quit_status is not None,
         final_pose=simulator.pose,
         robot_model=str(simulator.robot.name),
-        wheel_commands=tuple(motor.last_command(a) for motor, a in zip(motors, angles)),
+        wheel_commands=tuple(motor._last_command(a) for motor, a in zip(motors, angles)),
     )
 
 
