@@ -425,7 +425,7 @@ def test_webots_run_names_the_other_language_a_controller_folder_holds(tmp_path:
             [],
             "mazesim: error: the following arguments are required: COMMAND (one of: worlds, demo, "
             "bench, ros, ros2, barcode-study, transfer-study, import-wbt, webots, sweep, train, "
-            "eval, replay, show; 'mazesim COMMAND --help' gives its options)",
+            "eval, replay, show, info; 'mazesim COMMAND --help' gives its options)",
         ),
         (
             ["webots"],
