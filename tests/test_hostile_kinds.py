@@ -1,7 +1,8 @@
 """Hostile values of unusual kinds where numbers, arrays and paths are taken (#35, #15): a
 complex number (numpy's converts to a float with a warning only), a masked array (whose mask a
-borrowed slice drops), a path object whose own ``__fspath__`` fails, and a vector env used after
-``close()``. Each is refused by the package's own errors, saying what was expected and found."""
+borrowed slice or ``np.asarray`` drops), a path object whose own ``__fspath__`` fails, and a
+vector env used after ``close()``. Each is refused by the package's own errors, saying what was
+expected and found."""
 
 from __future__ import annotations
 
@@ -13,7 +14,7 @@ import pytest
 
 import mazesim
 from mazesim.envs.errors import EnvClosedError
-from mazesim.errors import WrongTypeError
+from mazesim.errors import InvalidActionError, WrongTypeError
 
 WORLD = mazesim.World.builtin("seed-maze")
 
@@ -66,6 +67,23 @@ def test_a_masked_array_is_refused_saying_how_to_fill_it() -> None:
         batch.set_starts(np.ma.masked_array(np.zeros((2, 3)), mask=True))
     simulator.step_robots(commands.filled(0.0))  # a plain array, as the message says
     assert simulator.steps == 1
+
+
+@pytest.mark.parametrize("vector", [False, True], ids=["env", "vector env"])
+def test_a_masked_action_is_refused_not_read_without_its_mask(vector: bool) -> None:
+    """The envs' actions are read in Python before the core's buffers see them: a masked
+    array's mask would be dropped there, so the one action reader refuses it too."""
+    if vector:
+        env: object = gymnasium.make_vec("mazesim/EPuckMaze-v0", num_envs=2)
+        action = np.ma.masked_array(np.full((2, 2), 0.5, np.float32), mask=[[True, False]] * 2)
+    else:
+        env = gymnasium.make("mazesim/EPuckMaze-v0")
+        action = np.ma.masked_array(np.full(2, 0.5, np.float32), mask=[True, False])
+    env.reset(seed=1)  # type: ignore[attr-defined]
+    with pytest.raises(InvalidActionError, match=r"masked array .*array\.filled\(value\)"):
+        env.step(action)  # type: ignore[attr-defined]
+    env.step(action.filled(0.0))  # type: ignore[attr-defined]
+    env.close()  # type: ignore[attr-defined]
 
 
 class RaisingPath:

@@ -187,7 +187,7 @@ class ActionConverter:
         """
         # The common action (a native float32 array of two fractions, as the space samples it)
         # is read without conversions; any other goes through the full check below.
-        array = action if type(action) is np.ndarray else np.asarray(action)
+        array = action if type(action) is np.ndarray else _as_array(action)
         if not self.discrete and array.dtype is _FLOAT32 and array.shape == (2,):
             left, right = array.tolist()
             if -1.0 <= left <= 1.0 and -1.0 <= right <= 1.0:  # False for NaN too
@@ -211,7 +211,7 @@ class ActionConverter:
 
     def batch(self, actions: Any, num_envs: int) -> npt.NDArray[np.float32]:
         """The (N, 2) float32 wheel speeds in rad/s of a batch of actions."""
-        array = np.asarray(actions)
+        array = _as_array(actions)
         if self.discrete:
             if array.shape != (num_envs,) or array.dtype.kind not in "iu":
                 raise InvalidActionError(
@@ -232,6 +232,17 @@ class ActionConverter:
         if self.clip:
             np.clip(fractions, -1.0, 1.0, out=fractions)
         return fractions * self.max_speed
+
+
+def _as_array(actions: Any) -> npt.NDArray[Any]:
+    """``actions`` as a numpy array, refusing a masked array (``np.asarray`` would drop its
+    mask and read the masked entries as the numbers under them), as the core's buffers do."""
+    if isinstance(actions, np.ma.MaskedArray):
+        raise InvalidActionError(
+            "expected actions as a plain array, found a numpy masked array (its mask would be "
+            "dropped): pass array.filled(value) with the value masked entries should take"
+        )
+    return np.asarray(actions)
 
 
 def _check_fractions(
