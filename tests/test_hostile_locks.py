@@ -22,8 +22,8 @@ def long_run(steps=4000):
     return batch.run(steps, 'braitenberg', *out)
 def forked_child():
     # How a child forked now reads the batch: 0 refused as forked, 1 read (the batch was free at
-    # the fork), 2 refused for another reason, 'HUNG' (a ceiling of 120 s); the child then steps
-    # a batch of its own.
+    # the fork), 2 refused for another reason, 'HUNG' (a ceiling of 60 s, half the case's own, so
+    # that a hung child is told as one); the child then steps a batch of its own.
     pid = os.fork()
     if pid == 0:
         code = 1
@@ -38,7 +38,7 @@ def forked_child():
             fresh.step(np.zeros((2, 2), np.float32), *buffers(fresh))
         finally:
             os._exit(code)
-    for _ in range(2400):  # the loop ends with the child
+    for _ in range(1200):  # the loop ends with the child
         done, status = os.waitpid(pid, os.WNOHANG)
         if done:
             return os.waitstatus_to_exitcode(status)

@@ -164,6 +164,27 @@ fn usable_array<'a, 'py, T: Element>(
     }
 }
 
+/// Walks the buffer checks once, accepting an array and refusing a misfit, so that the state
+/// pyo3 makes on first use along them (interned attribute names such as `__mro__` and
+/// `__name__`) is made by the import, which holds the interpreter alone. pyo3 makes such state
+/// with the GIL released; a process forked while another thread was making it would find it
+/// half-made in the child and wait for it for ever.
+pub fn ready(py: Python<'_>) -> PyResult<()> {
+    let fit = numpy::PyArray1::<f32>::zeros(py, 1, false).into_any();
+    copied::<f32>(&fit, "probe", "float32", &[1])?;
+    writable::<f32>(&fit, "probe", "float32", &[1])?;
+    let misfit = numpy::PyArray1::<f32>::zeros(py, 2, false).into_any();
+    let refused = readable::<f32>(&misfit, "probe", "float32", &[1]).is_err()
+        && readable::<f32>(&py.None().into_bound(py), "probe", "float32", &[1]).is_err();
+    if refused {
+        Ok(())
+    } else {
+        Err(to_py(Error::Internal(
+            "the buffer checks accepted a misfit while the import readied them".into(),
+        )))
+    }
+}
+
 /// Whether an array is numpy's masked array (`np.ma.MaskedArray` or a subclass): a slice
 /// borrowed from it would drop its mask, reading its masked entries as the numbers under them.
 fn is_masked(array: &Bound<'_, PyAny>) -> bool {

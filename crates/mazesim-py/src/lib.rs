@@ -83,18 +83,19 @@ fn file_kind(text: Given<String>) -> PyResult<Option<(String, String)>> {
     })
 }
 
-/// Makes numpy's C API and the array borrow registry ready while the import holds the
-/// interpreter alone. Both are made once, on first use; a process forked while another thread
-/// was making one would find it half-made in the child and wait for it for ever.
-fn ready_numpy(py: Python<'_>) -> PyResult<()> {
+/// Makes the state made once, on first use, ready while the import holds the interpreter alone:
+/// numpy's C API, the array borrow registry and what the buffer checks use. A process forked
+/// while another thread was making one would find it half-made in the child and wait for it for
+/// ever.
+fn ready_once_made_state(py: Python<'_>) -> PyResult<()> {
     let probe = numpy::PyArray1::<f32>::zeros(py, 1, false);
     numpy::PyArrayMethods::try_readwrite(&probe)?;
-    Ok(())
+    buffers::ready(py)
 }
 
 #[pymodule]
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
-    ready_numpy(m.py())?;
+    ready_once_made_state(m.py())?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("EPUCK_DEFAULT_CONTROLLER", EPUCK_DEFAULT_CONTROLLER)?;
     m.add_function(wrap_pyfunction!(builtin_world_names, m)?)?;
