@@ -282,6 +282,12 @@ class RobotSimulation:
             self.radio.transmit({self.robot_index: self.simulator.pose})
         if self.traction is not None:
             left, right = self.traction.drive(left, right, self.basic_time_step_ms / 1000.0)
+        holds = getattr(self.simulator, "hold_wheel_commands", None)
+        if holds is not None and self.wheel_motors:
+            # The world's process keeps the commands this step sends, which drive the wheels
+            # should the controller die without a word (Webots' motor node keeps them).
+            angles = self.wheel_angles()
+            holds(tuple(m._last_command(a) for m, a in zip(self.wheel_motors, angles)))
         if self.simulator.step(left, right) is True:
             self.world_over = True
             return
