@@ -332,7 +332,10 @@ def _scene(
             scene.traction_version = "2" if second else "1"
     scene.supervisor = bool(first_value(own, "supervisor", Field.flag))
     scene.synchronization = first_value(own, "synchronization", Field.flag) is not False
-    scene.lights = read_lights(tree, scene.nue)
+    robot_lines = {
+        node.start: line_of(node.type_start) for node in every if node.type_name in robot_types
+    }
+    scene.lights = read_lights(tree, scene.nue, lambda node: robot_lines.get(node.start))
     if (arguments := first_value(own, "controllerArgs", _itself)) is not None:
         strings = [t.text[1:-1] for t in arguments.tokens if t.kind == "string"]
         bracketed = bool(arguments.tokens) and arguments.tokens[0].kind == "["
