@@ -185,7 +185,7 @@ def test_a_controller_that_limits_its_motors_is_told_at_its_start(tmp_path: Path
     )
     prepared = prepare_controller(str(tmp_path / "ramp.py"))
     assert prepared.runnable
-    # A motor's acceleration is modelled (tests/webots/test_webots_motor_ramps.py), its torque
+    # A motor's acceleration is modelled (tests/webots/test_webots_device_calls.py), its torque
     # limit is not.
     assert [m for m in prepared.missing if m.startswith("motor torque")] == [
         "motor torque limits (setAvailableTorque): mazesim's wheels reach their commanded speed "

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import functools
 import math
+import re
 import sys
 import zlib
 from collections.abc import Callable, Sequence
@@ -49,6 +50,8 @@ def _print_error(message: str) -> None:
 
 #: The longest sampling period Webots takes: its ``enable`` functions take a C ``int`` of ms.
 MAX_SAMPLING_PERIOD_MS = 2**31 - 1
+#: The ``aperture`` (rad) of the E-puck's proximity sensors (its ``E-puckDistanceSensor`` PROTO).
+EPUCK_PROXIMITY_APERTURE = 0.1
 
 
 def sampling_period(samplingPeriod: Any, function: str) -> int | None:
@@ -491,7 +494,10 @@ class DistanceSensor(_Tabled, _ScalarSensor):
         return self._table.rows[0][0] if self._table.rows else 0.0
 
     def getAperture(self) -> float:
-        """The ray's aperture (rad): one ray."""
+        """The sensor's ``aperture`` (rad): an E-puck proximity sensor's, 0.1, as its
+        ``E-puckDistanceSensor`` PROTO sets it (R2022a-R2025a); another's 0 (one ray)."""
+        if not self._ground and self._kind != "range" and re.fullmatch(r"ps[0-7]", self._name):
+            return EPUCK_PROXIMITY_APERTURE
         return 0.0
 
     max_value = webots_property("getMaxValue")

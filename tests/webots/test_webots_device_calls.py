@@ -1,6 +1,7 @@
 """Webots' device calls that controllers use, against what Webots documents and does: a motor's
-acceleration ramps its speed (``WbMotor::computeCurrentDynamicVelocity``), and a supervisor
-reads its own node's ``controller`` field as the world file writes it (#32)."""
+acceleration ramps its speed (``WbMotor::computeCurrentDynamicVelocity``), a supervisor
+reads its own node's ``controller`` field as the world file writes it, and a proximity sensor
+gives its PROTO's aperture (#32)."""
 
 from __future__ import annotations
 
@@ -77,3 +78,11 @@ def test_a_supervisor_reads_its_own_controller_field(field: str, read: str) -> N
     controller.Robot.created = None
     supervisor = controller.Supervisor()
     assert supervisor.getSelf().getField("controller").getSFString() == read
+
+
+def test_the_proximity_sensors_give_their_protos_aperture() -> None:
+    # E-puckDistanceSensor.proto (R2022a-R2025a): aperture 0.1; the ground sensors are not its.
+    prepare(mazesim.load_world("arena"), seconds=1.0, noise=False)
+    controller.Robot.created = None
+    robot = controller.Robot()
+    assert [robot.getDevice(f"ps{i}").getAperture() for i in range(8)] == [0.1] * 8
