@@ -13,7 +13,7 @@ import pytest
 from mazesim.webots.lights import Light, carried, irradiance
 from mazesim.webots.lockstep import run_world
 from mazesim.webots.scene import read_scene
-from supervised_world import project_of
+from supervised_world import cruising_controller, project_of
 
 #: A lamp on the floor's plane, and a beacon e-puck holding a PointLight 5 cm above its centre
 #: that drives 5 rad/s straight ahead (+x), towards a watcher 0.5 m ahead that stands still.
@@ -31,18 +31,7 @@ E-puck {
 E-puck { translation 0.5 0 0 rotation 0 0 1 3.14159 name "watcher" controller "watcher" }
 """
 
-BEACON = """import math
-
-from controller import Robot
-
-robot = Robot()
-for name in ("left wheel motor", "right wheel motor"):
-    wheel = robot.getDevice(name)
-    wheel.setPosition(math.inf)
-    wheel.setVelocity(5.0)
-while robot.step(32) != -1:
-    pass
-"""
+BEACON = cruising_controller(5.0)
 
 #: Notes its front light sensor's readings (ls0, facing the beacon) at its first and last steps.
 WATCHER = """import json

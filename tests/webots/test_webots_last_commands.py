@@ -11,7 +11,7 @@ from pathlib import Path
 import pytest
 
 from mazesim.webots.lockstep import run_world
-from supervised_world import project_of
+from supervised_world import cruising_controller, project_of
 
 #: A robot without a body that runs to the end, and two e-pucks whose controllers end early.
 WORLD = """#VRML_SIM R2023b utf8
@@ -29,18 +29,7 @@ while robot.step(int(robot.getBasicTimeStep())) != -1:
 """
 
 #: Velocity control at 5 rad/s for 10 steps, then the controller returns.
-CRUISER = """import math
-
-from controller import Robot
-
-robot = Robot()
-for name in ("left wheel motor", "right wheel motor"):
-    wheel = robot.getDevice(name)
-    wheel.setPosition(math.inf)
-    wheel.setVelocity(5.0)
-for _ in range(10):
-    robot.step(int(robot.getBasicTimeStep()))
-"""
+CRUISER = cruising_controller(5.0, steps=10)
 
 #: Position control to 10 rad, one step, then the controller raises.
 PARKER = """from controller import Robot
@@ -73,23 +62,13 @@ def test_the_wheels_keep_their_last_commands_after_the_controller_ends(tmp_path:
 
 #: Velocity control at 5 rad/s for 10 steps, a command no step sends, then the process dies
 #: without a word (as a controller that segfaults or is killed does).
-KILLED_CRUISER = """import math
-import os
-import signal
-
-from controller import Robot
-
-robot = Robot()
-wheels = [robot.getDevice(n) for n in ("left wheel motor", "right wheel motor")]
-for wheel in wheels:
-    wheel.setPosition(math.inf)
-    wheel.setVelocity(5.0)
-for _ in range(10):
-    robot.step(int(robot.getBasicTimeStep()))
-for wheel in wheels:
-    wheel.setVelocity(0.0)
-os.kill(os.getpid(), signal.SIGKILL)
-"""
+KILLED_CRUISER = (
+    "import os\nimport signal\n\n"
+    + cruising_controller(5.0, steps=10)
+    + 'for name in ("left wheel motor", "right wheel motor"):\n'
+    + "    robot.getDevice(name).setVelocity(0.0)\n"
+    + "os.kill(os.getpid(), signal.SIGKILL)\n"
+)
 
 #: Position control to 10 rad, one step, then the process dies without a word.
 KILLED_PARKER = """import os
