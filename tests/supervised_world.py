@@ -42,6 +42,23 @@ DEF EPUCK E-puck { translation 0 0 0 supervisor TRUE controller "<extern>" }
 """
 
 
+def cruising_controller(speed: float, steps: int | None = None) -> str:
+    """The source of a Python controller that drives both wheels at ``speed`` rad/s under
+    velocity control, for ``steps`` steps then returns (None: until the run's end)."""
+    loop = (
+        "while robot.step(int(robot.getBasicTimeStep())) != -1:\n    pass\n"
+        if steps is None
+        else f"for _ in range({steps}):\n    robot.step(int(robot.getBasicTimeStep()))\n"
+    )
+    return (
+        "import math\n\nfrom controller import Robot\n\nrobot = Robot()\n"
+        'for name in ("left wheel motor", "right wheel motor"):\n'
+        "    wheel = robot.getDevice(name)\n"
+        "    wheel.setPosition(math.inf)\n"
+        f"    wheel.setVelocity({speed})\n" + loop
+    )
+
+
 def project_of(tmp_path: Path, world_file: str, text: str, controllers: dict[str, str]) -> Path:
     """A Webots project in ``tmp_path``: a world file named ``world_file`` holding ``text`` in
     its ``worlds`` folder and a Python controller of each name in ``controllers`` (its source);

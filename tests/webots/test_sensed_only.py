@@ -107,3 +107,26 @@ def test_the_front_infrared_sensors_read_it_as_the_same_box_with_a_bounding_obje
     assert seen == walled
     assert all(s > 2 * f for s, f in zip(seen, free)), (seen, free)
     assert np.all(np.isfinite(seen))
+
+
+def test_a_generic_range_sensor_passes_through_it_as_webots_bounding_object_rays_do(
+    tmp_path: Path,
+) -> None:
+    # Webots' reference manual (DistanceSensor): generic, sonar and laser rays collide with the
+    # bounding objects of Solid nodes, infra-red rays with the Solid nodes themselves.
+    def time_of_flight(text: str) -> float:
+        robot = first_step(tmp_path, 'E-puck { version "2" }\n' + text)
+        sensor = robot.getDevice("tof")
+        sensor.enable(32)
+        robot.step(32)
+        reading = float(sensor.getValue())
+        controller.Robot.created = None
+        simulations.release()
+        return reading
+
+    open_floor = time_of_flight("")
+    walled = time_of_flight(
+        NEAR_GOAL.replace('name "goal"', 'name "goal" boundingObject Box { size 0.1 0.3 0.05 }')
+    )
+    assert time_of_flight(NEAR_GOAL) == open_floor
+    assert walled < open_floor

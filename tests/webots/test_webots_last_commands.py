@@ -11,7 +11,7 @@ from pathlib import Path
 import pytest
 
 from mazesim.webots.lockstep import run_world
-from supervised_world import project_of
+from supervised_world import cruising_controller, project_of
 
 #: A robot without a body that runs to the end, and two e-pucks whose controllers end early.
 WORLD = """#VRML_SIM R2023b utf8
@@ -29,18 +29,7 @@ while robot.step(int(robot.getBasicTimeStep())) != -1:
 """
 
 #: Velocity control at 5 rad/s for 10 steps, then the controller returns.
-CRUISER = """import math
-
-from controller import Robot
-
-robot = Robot()
-for name in ("left wheel motor", "right wheel motor"):
-    wheel = robot.getDevice(name)
-    wheel.setPosition(math.inf)
-    wheel.setVelocity(5.0)
-for _ in range(10):
-    robot.step(int(robot.getBasicTimeStep()))
-"""
+CRUISER = cruising_controller(5.0, steps=10)
 
 #: Position control to 10 rad, one step, then the controller raises.
 PARKER = """from controller import Robot
@@ -69,3 +58,55 @@ def test_the_wheels_keep_their_last_commands_after_the_controller_ends(tmp_path:
     # The parker's wheels reach their 10 rad target: 0.2 m of a 0.02 m wheel, then stop.
     assert parker.final_pose[0] == pytest.approx(0.5 + 10.0 * 0.02, abs=3e-3)
     assert math.isclose(parker.final_pose[1], 0.0, abs_tol=1e-3)
+
+
+#: Velocity control at 5 rad/s for 10 steps, a command no step sends, then the process dies
+#: without a word (as a controller that segfaults or is killed does).
+KILLED_CRUISER = (
+    "import os\nimport signal\n\n"
+    + cruising_controller(5.0, steps=10)
+    + 'for name in ("left wheel motor", "right wheel motor"):\n'
+    + "    robot.getDevice(name).setVelocity(0.0)\n"
+    + "os.kill(os.getpid(), signal.SIGKILL)\n"
+)
+
+#: Position control to 10 rad, one step, then the process dies without a word.
+KILLED_PARKER = """import os
+import signal
+
+from controller import Robot
+
+robot = Robot()
+for name in ("left wheel motor", "right wheel motor"):
+    robot.getDevice(name).setPosition(10.0)
+robot.step(int(robot.getBasicTimeStep()))
+os.kill(os.getpid(), signal.SIGKILL)
+"""
+
+#: Two e-pucks whose fields name no controller, one written empty, one ``<none>``.
+IDLE = """E-puck { translation 0 0.5 0 name "empty" controller "" }
+E-puck { translation 0 -0.5 0 name "none" controller "<none>" }
+"""
+
+
+def test_a_controller_killed_without_a_word_leaves_what_its_last_step_sent(
+    tmp_path: Path,
+) -> None:
+    sources = {"clock": CLOCK, "cruiser": KILLED_CRUISER, "parker": KILLED_PARKER}
+    world = project_of(tmp_path, "killed.wbt", WORLD + IDLE, sources)
+    run = run_world(str(world), seconds=SECONDS, noise=False)
+    clock, cruiser, parker, empty, none = run.robots
+    assert clock.exit_status == 0, clock.error
+    for killed in (cruiser, parker):
+        assert killed.exit_status != 0 and "without a report" in killed.error
+    steps = round(SECONDS / STEP_S)
+    # The velocity its steps sent (5 rad/s) goes on; the 0 set after its last step was never
+    # sent, as Webots' library sends a motor's commands with the next wb_robot_step.
+    assert cruiser.final_pose[0] == pytest.approx(-0.5 + steps * 5.0 * 0.02 * STEP_S, abs=3e-3)
+    assert math.isclose(cruiser.final_pose[1], 0.0, abs_tol=1e-3)
+    assert parker.final_pose[0] == pytest.approx(0.5 + 10.0 * 0.02, abs=3e-3)
+    # A robot whose field names no controller runs none (not its PROTO's default) and stands
+    # where the world file puts it: its motors hold the wheels at their first target.
+    for idle, y in ((empty, 0.5), (none, -0.5)):
+        assert idle.controller is None and idle.exit_status == 0
+        assert idle.final_pose[:2] == pytest.approx((0.0, y), abs=1e-6)

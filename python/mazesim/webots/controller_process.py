@@ -19,10 +19,13 @@ messages are pickled tuples). The protocol, from the controller's side:
   (:class:`~mazesim.webots.simulation.WorldReset`) and the ``customData`` a supervisor last
   wrote into the robot's node (``Fleet.custom_data``) and how many times a supervisor has
   changed the walls (``Fleet.wall_changes``), or ``("ok", (True, None))`` without a step
-  when a supervisor has quit the simulation (``Robot.step`` then returns -1);
+  when a supervisor has quit the simulation (``Robot.step`` then returns -1); a step may also
+  carry the robot's own ``customData`` written since the last one, and the wheel motors'
+  commands when they changed since the last step sent them (:func:`held_commands`);
 - ``("done", summary)``: the controller has ended (a dict of :class:`ControllerSummary`'s
   fields); no answer. From then on the robot's wheels turn as its motors' last commands have
-  them (:mod:`mazesim.webots.last_commands`), as in Webots.
+  them (:mod:`mazesim.webots.last_commands`), as in Webots. A process that ends without this
+  report (killed, or crashed in native code) leaves the commands its last step sent.
 
 The controller itself runs as in a run of one robot (:func:`mazesim.webots.runner.run_controller`)
 against a :class:`RemoteSimulator`, which forwards the simulator's methods over the pipe.
@@ -32,9 +35,12 @@ from __future__ import annotations
 
 import os
 import sys
+from collections.abc import Sequence
 from dataclasses import asdict, dataclass
 from multiprocessing.connection import Connection
 from typing import TYPE_CHECKING, Any
+
+from mazesim.webots.last_commands import WheelCommand
 
 if TYPE_CHECKING:
     from mazesim.webots.keyboard import KeyScript
@@ -47,6 +53,7 @@ __all__ = [
     "Remote",
     "RemoteSimulator",
     "controller_main",
+    "held_commands",
     "state_after_step",
 ]
 
@@ -174,6 +181,20 @@ class RemoteSimulator(Remote):
         self.wall_changes = 0
         #: The robot's own ``setCustomData`` since its last step, which goes with the next.
         self.own_custom_data: str | None = None
+        #: The wheel motors' commands the next step sends (:meth:`hold_wheel_commands`), and
+        #: those the world's process holds already.
+        self._commands: tuple[tuple[float, ...], ...] | None = None
+        self._commands_held: tuple[tuple[float, ...], ...] | None = None
+
+    def hold_wheel_commands(self, commands: tuple[WheelCommand, ...]) -> None:
+        """Notes the wheel motors' commands as the next step sends them, which the world's
+        process holds for the robot (:func:`held_commands`); each wheel's angle goes as its
+        difference to the wheel's encoder, which changes only when the world is reset."""
+        encoders = self.encoders
+        self._commands = tuple(
+            (c.target_position, c.velocity, c.max_velocity, c.angle - float(turned))
+            for c, turned in zip(commands, encoders)
+        )
 
     def _state(self, name: str) -> Any:
         if name in self._after_step:
@@ -206,12 +227,24 @@ class RemoteSimulator(Remote):
         """Asks for the next basic step with these wheel speeds; returns once taken, True when
         the world's run is over instead (a supervisor quit it)."""
         written, self.own_custom_data = self.own_custom_data, None
-        over, state = self._ask(("step", float(left), float(right), written))
+        commands = None if self._commands == self._commands_held else self._commands
+        self._commands_held = self._commands
+        over, state = self._ask(("step", float(left), float(right), written, commands))
         self._after_step = dict(state or {})
         self.last_reset = self._after_step.pop("last_reset", self.last_reset)
         self.custom_data = self._after_step.pop("custom_data", self.custom_data)
         self.wall_changes = self._after_step.pop("wall_changes", self.wall_changes)
         return bool(over)
+
+
+def held_commands(sent: Sequence[Sequence[float]], encoders: Sequence[float]) -> list[WheelCommand]:
+    """The wheel motors' commands as a robot's last step sent them
+    (:meth:`RemoteSimulator.hold_wheel_commands`), each wheel's angle where its encoder
+    ``encoders`` (rad) now puts it."""
+    return [
+        WheelCommand(target, velocity, max_velocity, offset + float(turned))
+        for (target, velocity, max_velocity, offset), turned in zip(sent, encoders)
+    ]
 
 
 def answer(target: Any, name: str, args: tuple[Any, ...] | None) -> tuple[str, Any]:

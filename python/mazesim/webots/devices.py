@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import functools
 import math
+import re
 import sys
 import zlib
 from collections.abc import Callable, Sequence
@@ -49,6 +50,8 @@ def _print_error(message: str) -> None:
 
 #: The longest sampling period Webots takes: its ``enable`` functions take a C ``int`` of ms.
 MAX_SAMPLING_PERIOD_MS = 2**31 - 1
+#: The ``aperture`` (rad) of the E-puck's proximity sensors (its ``E-puckDistanceSensor`` PROTO).
+EPUCK_PROXIMITY_APERTURE = 0.1
 
 
 def sampling_period(samplingPeriod: Any, function: str) -> int | None:
@@ -491,7 +494,10 @@ class DistanceSensor(_Tabled, _ScalarSensor):
         return self._table.rows[0][0] if self._table.rows else 0.0
 
     def getAperture(self) -> float:
-        """The ray's aperture (rad): one ray."""
+        """The sensor's ``aperture`` (rad): an E-puck proximity sensor's, 0.1, as its
+        ``E-puckDistanceSensor`` PROTO sets it (R2022a-R2025a); another's 0 (one ray)."""
+        if not self._ground and self._kind != "range" and re.fullmatch(r"ps[0-7]", self._name):
+            return EPUCK_PROXIMITY_APERTURE
         return 0.0
 
     max_value = webots_property("getMaxValue")
@@ -551,6 +557,8 @@ class Motor(Device):
         # As in Webots, the velocity starts at maxVelocity (the speed of position control).
         self._velocity = self._max_velocity
         self._acceleration = -1.0
+        #: The wheel's speed at the last step, which a set acceleration ramps from.
+        self._current_speed = 0.0
         #: What the controller set last, as Webots' controller library keeps it (a reset of
         #: the world restarts the motor, not this): the getters' target position and velocity.
         self._set_points = (self._target_position, self._velocity)
@@ -563,6 +571,7 @@ class Motor(Device):
         controller library keeps it."""
         self._target_position = float(self._simulation.scene.wheel_positions[self._side])
         self._velocity = self._max_velocity
+        self._current_speed = 0.0
 
     def setPosition(self, position: float) -> None:
         """Turns the wheel to ``position`` rad; ``float('inf')`` switches to velocity control."""
@@ -599,8 +608,22 @@ class Motor(Device):
         self._set_points = (self._set_points[0], velocity)
 
     def setAcceleration(self, acceleration: float) -> None:
-        """Stored for ``getAcceleration``; mazesim's motors reach their speed at once."""
-        self._acceleration = float(acceleration)
+        """The most the wheel's speed changes per second (rad/s^2), as Webots' motor ramps its
+        velocity towards the one asked (``WbMotor::computeCurrentDynamicVelocity``); -1 (the
+        default): at once. Negative values but -1 are refused with Webots' error."""
+        acceleration = float(acceleration)
+        if math.isnan(acceleration):
+            _print_error(
+                "Error: wb_motor_set_acceleration() called with an invalid 'acceleration' "
+                "argument (NaN)."
+            )
+            return
+        if acceleration < 0.0 and acceleration != -1.0:
+            _print_error(
+                "Error: wb_motor_set_acceleration() called with negative 'acceleration' argument."
+            )
+            return
+        self._acceleration = acceleration
 
     def getTargetPosition(self) -> float:
         """The position set last (``inf`` in velocity control)."""
@@ -693,8 +716,15 @@ class Motor(Device):
     position_sensor = webots_property("getPositionSensor")
 
     def _wheel_speed(self, angle: float) -> float:
-        """The wheel speed (rad/s) for the next step, the wheel being at ``angle``."""
-        return motor_speed(self._target_position, self._velocity, self._max_velocity, angle)
+        """The wheel speed (rad/s) for the next step, the wheel being at ``angle``: the motor
+        control's, reached at once or, with an acceleration set, ramped towards from the last
+        step's by at most the acceleration times the step."""
+        speed = motor_speed(self._target_position, self._velocity, self._max_velocity, angle)
+        if self._acceleration >= 0.0:
+            most = self._acceleration * self._simulation.basic_time_step_ms / 1000.0
+            speed = max(self._current_speed - most, min(self._current_speed + most, speed))
+        self._current_speed = speed
+        return speed
 
     def _last_command(self, angle: float) -> WheelCommand:
         """The motor's commands as they stand, the wheel being at ``angle``: what drives the

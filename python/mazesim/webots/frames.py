@@ -15,6 +15,7 @@ from collections.abc import Sequence
 
 __all__ = [
     "ENU_TO_NUE",
+    "SLOT_ORIGINS",
     "WORLD_FRAME",
     "Axes",
     "Frame",
@@ -112,6 +113,14 @@ def axis_angle(matrix: Sequence[float]) -> tuple[float, float, float, float]:
 
 #: A frame: its origin and its rotation matrix (row after row), in the frame it is placed in.
 Frame = tuple[list[float], list[float]]
+#: Where the E-puck PROTO (R2022a on) mounts a slot, in the robot's frame (m): its
+#: ``turretSlot`` 9.5 mm behind the centre on top of the turret, 48.6 mm up; its
+#: ``groundSensorsSlot`` 3 cm forward, 0.3 mm up (the core's import places the devices of these
+#: slots there too). Another slot, or another robot's, is at the robot's origin.
+SLOT_ORIGINS: dict[tuple[str, str], tuple[float, float, float]] = {
+    ("E-puck", "turretSlot"): (-0.0095, 0.0, 0.0486),
+    ("E-puck", "groundSensorsSlot"): (0.03, 0.0, 0.0003),
+}
 #: The world's frame in itself.
 WORLD_FRAME: Frame = ([0.0, 0.0, 0.0], rotation_matrix(0.0, 0.0, 1.0, 0.0))
 

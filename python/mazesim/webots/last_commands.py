@@ -6,9 +6,10 @@ library sends the commands set before its end with ``wb_robot_cleanup`` (a step 
 robot then notes only that its controller has terminated (``WbRobot``,
 ``C_ROBOT_CLIENT_EXIT_NOTIFY``), and the world goes on stepping the other robots. So a wheel
 under velocity control keeps turning at its last velocity, and one under position control keeps
-turning towards its last target, after its controller exits or crashes (Webots' source,
-src/webots/nodes/WbMotor.cpp and src/webots/nodes/WbRobot.cpp, and src/controller/c/robot.c's
-``wb_robot_cleanup``).
+turning towards its last target, after its controller exits or crashes; one that dies
+without ``wb_robot_cleanup`` (killed, or crashed in native code) leaves the commands its last
+``wb_robot_step`` sent (Webots' source, src/webots/nodes/WbMotor.cpp and
+src/webots/nodes/WbRobot.cpp, and src/controller/c/robot.c's ``wb_robot_cleanup``).
 
 One rule gives a wheel's speed, for the controller's own steps (:class:`~mazesim.webots.devices.
 Motor`) and after its end in a world run (:class:`Coasting`, in the world's process).

@@ -20,7 +20,10 @@ is 1 but for a spot light: 0 for a point farther from its direction than its ``c
 falling linearly to 0 from its ``beamWidth`` to its ``cutOffAngle``. A point or spot light gives
 nothing beyond its ``radius``. A light inside a ``Transform``, ``Pose``, ``Group``, ``Solid``
 or any node with a ``translation`` and ``rotation`` (a robot's slot too) is placed by its
-parents' poses composed (their ``scale`` is not applied), as Webots places it. Walls do not
+parents' poses composed (their ``scale`` is not applied), as Webots places it. A light that a
+robot node holds (among its children or in a slot: a "beacon" e-puck that others follow by its
+light) moves with the robot, as any node under a Solid does in Webots: :func:`carried` places it
+where the robot stands now. Walls do not
 shade (Webots' LightSensor ``occlusion`` defaults to FALSE). A world without any light node
 gets :data:`DEFAULT_IRRADIANCE`; one whose lights are all off gets none.
 """
@@ -28,13 +31,20 @@ gets :data:`DEFAULT_IRRADIANCE`; one whose lights are all off gets none.
 from __future__ import annotations
 
 import math
-from collections.abc import Iterable, Iterator
-from dataclasses import dataclass
+from collections.abc import Callable, Iterable, Iterator, Sequence
+from dataclasses import dataclass, replace
 
-from mazesim.webots.frames import WORLD_FRAME, Frame, nue_to_enu, placed
+from mazesim.webots.frames import SLOT_ORIGINS, WORLD_FRAME, Frame, nue_to_enu, placed
 from mazesim.webots.proto.syntax import Field, Node, first_value
 
-__all__ = ["BACKGROUND_LIGHTS", "DEFAULT_IRRADIANCE", "Light", "irradiance", "read_lights"]
+__all__ = [
+    "BACKGROUND_LIGHTS",
+    "DEFAULT_IRRADIANCE",
+    "Light",
+    "carried",
+    "irradiance",
+    "read_lights",
+]
 
 #: Irradiance (W/m^2) of a world without light information: the middle of the e-puck light
 #: sensors' table (1-2 W/m^2), a reading of 2047.5.
@@ -89,6 +99,8 @@ class Light:
         cut_off: A spot light's ``cutOffAngle`` (rad).
         beam_width: A spot light's ``beamWidth`` (rad).
         color: The mean of its ``color``'s components.
+        carrier: The line of the robot node that holds it (it moves with that robot; its
+            position and directions are where the robot's pose in the file puts them), or None.
     """
 
     position: tuple[float, float, float] | None
@@ -101,6 +113,7 @@ class Light:
     cut_off: float = math.pi
     beam_width: float = math.pi
     color: float = 1.0
+    carrier: int | None = None
 
 
 def _unit(x: float, y: float, z: float) -> tuple[float, float, float]:
@@ -162,34 +175,58 @@ def _construction_lamp(lamp: Node, holder: Frame, nue: bool) -> Light:
     )
 
 
-def _placed_nodes(tree: Iterable[Node]) -> Iterator[tuple[Node, Frame]]:
+def _placed_nodes(
+    tree: Iterable[Node], carrier_of: Callable[[Node], int | None], slots: bool = True
+) -> Iterator[tuple[Node, Frame, int | None]]:
     """Every node of the trees ``tree`` (``USE`` ones left out) with the frame of the node
-    that holds it, its parents' ``translation`` and ``rotation`` composed, in file order (a
-    stack, not recursion, so at any depth)."""
-    pending = [(node, WORLD_FRAME) for node in reversed(list(tree))]
+    that holds it, its parents' ``translation`` and ``rotation`` composed, and the robot that
+    holds it (``carrier_of`` a robot node: its line; None for another node), in file order (a
+    stack, not recursion, so at any depth); with ``slots``, an E-puck's slots are where its
+    PROTO mounts them since R2022a (Z-up)."""
+    pending: list[tuple[Node, Frame, int | None]] = [
+        (node, WORLD_FRAME, None) for node in reversed(list(tree))
+    ]
     while pending:
-        node, holder = pending.pop()
+        node, holder, carrier = pending.pop()
         if node.use_name is not None:
             continue
-        yield node, holder
+        yield node, holder, carrier
         offset = _numbers(node, "translation", (0.0, 0.0, 0.0))
         turn = first_value([node], "rotation", lambda item: item.numbers(4))
         frame = placed(holder, offset, turn)
-        inner = [(n, frame) for item in node.fields for n in item.nodes]
+        held = carrier if carrier is not None else carrier_of(node)
+        inner = [
+            (n, _slot_frame(frame, node, item.name) if slots else frame, held)
+            for item in node.fields
+            for n in item.nodes
+        ]
         pending.extend(reversed(inner))
 
 
-def read_lights(tree: Iterable[Node], nue: bool = False) -> list[Light] | None:
+def _slot_frame(frame: Frame, node: Node, field_name: str) -> Frame:
+    """The frame of the nodes in field ``field_name`` of ``node`` (at ``frame``): a slot's
+    where the E-puck PROTO mounts it (:data:`~mazesim.webots.frames.SLOT_ORIGINS`)."""
+    origin = SLOT_ORIGINS.get((node.type_name, field_name))
+    return frame if origin is None else placed(frame, origin)
+
+
+def read_lights(
+    tree: Iterable[Node],
+    nue: bool = False,
+    carrier_of: Callable[[Node], int | None] = lambda node: None,
+) -> list[Light] | None:
     """The lights of a world file that are on, each placed by its parents' poses; None when
     it has no light node.
 
     Args:
         tree: The nodes at the top of the world file (their children are walked).
         nue: Whether the file is in Webots' old NUE frame (y up); positions are converted.
+        carrier_of: The line of a robot node (the lights it holds move with it), None for
+            any other node.
     """
     lights: list[Light] = []
     declared = False
-    for light, holder in _placed_nodes(tree):
+    for light, holder, carrier in _placed_nodes(tree, carrier_of, slots=not nue):
         if light.type_name not in _LIGHT_TYPES + _LIGHT_PROTOS:
             continue
         declared = True
@@ -198,7 +235,7 @@ def read_lights(tree: Iterable[Node], nue: bool = False) -> list[Light] | None:
                 lights.append(background)
             continue
         if light.type_name == "ConstructionLamp":
-            lights.append(_construction_lamp(light, holder, nue))
+            lights.append(replace(_construction_lamp(light, holder, nue), carrier=carrier))
             continue
         if first_value([light], "on", Field.flag) is False:
             continue
@@ -208,7 +245,7 @@ def read_lights(tree: Iterable[Node], nue: bool = False) -> list[Light] | None:
         if light.type_name == "DirectionalLight":
             x, y, z = _direction(holder, _numbers(light, "direction", (0.0, 0.0, -1.0)))
             direction = _unit(*(nue_to_enu(x, y, z) if nue else (x, y, z)))
-            lights.append(Light(None, direction, intensity, ambient, color=color))
+            lights.append(Light(None, direction, intensity, ambient, color=color, carrier=carrier))
             continue
         x, y, z = _point(holder, _numbers(light, "location", (0.0, 0.0, 0.0)))
         a0, a1, a2 = _numbers(light, "attenuation", (1.0, 0.0, 0.0))
@@ -231,9 +268,30 @@ def read_lights(tree: Iterable[Node], nue: bool = False) -> list[Light] | None:
                 cut_off=cut_off,
                 beam_width=beam_width,
                 color=color,
+                carrier=carrier,
             )
         )
     return lights if declared else None
+
+
+def carried(light: Light, start: Sequence[float], now: Sequence[float]) -> Light:
+    """``light`` as its carrier robot, whose pose (x, y, yaw) in the world file is ``start``,
+    now standing at ``now`` holds it: its position and directions turned about the vertical by
+    the robot's turn since, and moved with it."""
+    turn = float(now[2]) - float(start[2])
+    cos, sin = math.cos(turn), math.sin(turn)
+
+    def turned(v: tuple[float, float, float] | None) -> tuple[float, float, float] | None:
+        return None if v is None else (cos * v[0] - sin * v[1], sin * v[0] + cos * v[1], v[2])
+
+    position = None
+    if light.position is not None:
+        dx, dy, z = light.position[0] - start[0], light.position[1] - start[1], light.position[2]
+        x, y, _ = turned((dx, dy, z))  # type: ignore[misc]
+        position = (x + float(now[0]), y + float(now[1]), z)
+    return replace(
+        light, position=position, direction=turned(light.direction), beam=turned(light.beam)
+    )
 
 
 def irradiance(

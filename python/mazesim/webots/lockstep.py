@@ -10,8 +10,12 @@ state, and this process owns the world: every basic time step waits until every 
 controller has asked for it (lockstep), transmits the radio's packets
 (:mod:`mazesim.webots.radio`), then steps every robot. A robot without a controller (``void``,
 ``<generic>``, ``<none>``, an empty field), with an ``<extern>`` one not given on the command
-line, or with one that is not Python, stands still; so does a robot whose controller has
-ended. A robot that is not an e-puck runs its controller on a body that does not move by
+line, or with one that is not Python, stands still, as in Webots, whose motor nodes hold
+their wheels where the world file puts them until a controller commands them (``WbMotor``'s
+first target position is its joint's position, src/webots/nodes/WbMotor.cpp). A robot whose
+controller has ended, returned, raised, or died without a word (killed, crashed in native
+code), goes on as its motors' last commands have it (:mod:`mazesim.webots.last_commands`).
+A robot that is not an e-puck runs its controller on a body that does not move by
 itself and touches no wall. A supervisor sees and moves every robot through the
 :class:`Fleet`; its ``simulationQuit`` ends every controller's run (``Robot.step`` returns
 -1). So does Ctrl-C: the controllers' processes ignore it, and the world's process ends their
@@ -49,7 +53,12 @@ import numpy as np
 from mazesim._core import RobotProfile, Simulator, World
 from mazesim._toml import dump_toml, load_toml
 from mazesim.errors import ControllerBuildError, MazesimIOError, WorldFormatError
-from mazesim.webots.controller_process import ControllerJob, answer, state_after_step
+from mazesim.webots.controller_process import (
+    ControllerJob,
+    answer,
+    held_commands,
+    state_after_step,
+)
 from mazesim.webots.keyboard import KeyScript
 from mazesim.webots.last_commands import Coasting, WheelCommand
 from mazesim.webots.line_of_sight import LineOfSight, robot_body_radii
@@ -1095,6 +1104,9 @@ class _Pipes:
         self.wheels: dict[int, tuple[float, float]] = {}
         #: The robots whose controllers have ended, driven by their motors' last commands.
         self.coasting = Coasting()
+        #: The wheel motors' commands each running controller's steps last sent, which its
+        #: robot's motors keep should the controller die without its report.
+        self.sent_commands: dict[int, Any] = {}
         #: Each robot's own ``setCustomData`` sent with the step it asked for.
         self.own_custom_data: dict[int, str] = {}
         self.over = False
@@ -1158,6 +1170,7 @@ class _Pipes:
     def _start(self, processes: ControllerProcesses, index: int, job: ControllerJob) -> None:
         """Starts robot ``index``'s controller process for ``job``; the world waits for it."""
         self.coasting.stop(index)
+        self.sent_commands.pop(index, None)
         connection = processes.start(job)
         self.connections[index] = connection  # type: ignore[index]
         self.by_connection[id(connection)] = index
@@ -1174,7 +1187,11 @@ class _Pipes:
         try:
             message: Any = ready.recv()
         except (EOFError, OSError):
+            sent = self.sent_commands.get(index)
             self._ended(index)
+            if sent is not None and self.movable[index] and index not in self.fleet.gone:
+                # Killed or crashed without a word: its motors keep what its last step sent.
+                self.coasting.start(index, held_commands(sent, self.simulators[index].encoders))
             if not run.error:
                 run.exit_status = run.exit_status or 1
                 run.error = "the controller's process ended without a report\n"
@@ -1189,6 +1206,8 @@ class _Pipes:
             self.wheels[index] = (message[1], message[2]) if self.movable[index] else (0.0, 0.0)
             if len(message) > 3 and message[3] is not None:
                 self.own_custom_data[index] = str(message[3])
+            if len(message) > 4 and message[4] is not None:
+                self.sent_commands[index] = message[4]
         elif message[0] == "done":
             summary = message[1]
             self._ended(index)
@@ -1222,6 +1241,7 @@ class _Pipes:
         ready.send(answer(targets[target], name, args))
 
     def _ended(self, index: int) -> None:
+        self.sent_commands.pop(index, None)
         self.live.discard(index)
         self.leaving.discard(index)
         self.wheels.pop(index, None)

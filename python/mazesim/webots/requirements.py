@@ -75,18 +75,18 @@ QT_OFFSCREEN_NOTE = (
     "its Qt windows are drawn off screen (QT_QPA_PLATFORM=offscreen) and not shown: $DISPLAY "
     "is not set"
 )
-#: Calls that limit a motor's acceleration or torque (Python and C API; Webots reference manual,
-#: Motor), which mazesim does not model.
+#: Calls that limit a motor's torque (Python and C API; Webots reference manual, Motor), which
+#: mazesim does not model (a motor's acceleration it does: ``Motor.setAcceleration``).
 _MOTOR_LIMITS = re.compile(
-    r"\b(setAcceleration|setAvailableTorque|setAvailableForce|"
-    r"wb_motor_set_acceleration|wb_motor_set_available_torque|wb_motor_set_available_force)"
+    r"\b(setAvailableTorque|setAvailableForce|"
+    r"wb_motor_set_available_torque|wb_motor_set_available_force)"
     r"\s*\("
 )
 #: The statement for a controller that sets them.
 MOTOR_LIMITS = (
-    "motor acceleration and torque limits ({calls}): mazesim's wheels reach their commanded "
-    "speed at once, as Webots' motors do by default; only the floor's friction limits how fast "
-    "an imported E-puck's body starts"
+    "motor torque limits ({calls}): mazesim's wheels reach their commanded speed as Webots' "
+    "motors do at full torque; only the floor's friction limits how fast an imported E-puck's "
+    "body starts"
 )
 #: Supervisor calls that add nodes to the running world or remove them (the Python and C++
 #: names, then the C API's; Webots reference manual, Supervisor), which mazesim does in part; and
@@ -455,7 +455,7 @@ def _calls(file: str, language: str, calls: re.Pattern[str]) -> list[str]:
 
 
 def motor_limits(file: str, language: str) -> list[str]:
-    """The motor acceleration and torque limit calls (see ``_MOTOR_LIMITS``) in the controller's
+    """The motor torque limit calls (see ``_MOTOR_LIMITS``) in the controller's
     source files: its main file and the files of its language beside it."""
     return _calls(file, language, _MOTOR_LIMITS)
 

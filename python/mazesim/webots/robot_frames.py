@@ -21,23 +21,15 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
-from mazesim.webots.frames import rotation_matrix
+from mazesim.webots.frames import SLOT_ORIGINS, rotation_matrix
 from mazesim.webots.scene import Scene, SceneNode
 
-__all__ = ["Mount", "RobotShape", "robot_mount", "robot_shapes"]
+__all__ = ["SLOT_ORIGINS", "Mount", "RobotShape", "robot_mount", "robot_shapes"]
 
 Matrix = npt.NDArray[np.float64]
 
 #: Webots' ``Material.diffuseColor`` default (an ``Appearance`` whose material gives none).
 MATERIAL_DIFFUSE = (0.8, 0.8, 0.8)
-#: Where the E-puck PROTO (R2022a on) mounts a slot, in the robot's frame (m): its
-#: ``turretSlot`` 9.5 mm behind the centre on top of the turret, 48.6 mm up; its
-#: ``groundSensorsSlot`` 3 cm forward, 0.3 mm up (the core's import places the devices of these
-#: slots there too). Another slot, or another robot's, is at the robot's origin.
-SLOT_ORIGINS = {
-    ("E-puck", "turretSlot"): (-0.0095, 0.0, 0.0486),
-    ("E-puck", "groundSensorsSlot"): (0.03, 0.0, 0.0003),
-}
 #: A rotation axis at most this far from vertical (the sine of the angle) counts as upright.
 UPRIGHT = 1e-3
 

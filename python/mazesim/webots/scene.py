@@ -153,6 +153,8 @@ class Scene:
         synchronization: The robot's ``synchronization`` field (Webots' default TRUE).
         robot_name: The robot's ``name`` field (Webots' default for the E-puck, ``"e-puck"``).
         robot_custom_data: The robot's ``customData`` field.
+        robot_controller: The robot's ``controller`` field as the file writes it, or None when
+            the file leaves it out (or has no robot node).
         controller_args: The robot's ``controllerArgs`` (a list of strings since R2021a, one
             string split at spaces before), given to the controller as ``sys.argv[1:]``.
         camera_width: The E-puck's ``camera_width`` field, if set.
@@ -216,6 +218,7 @@ class Scene:
     synchronization: bool = True
     robot_name: str = "e-puck"
     robot_custom_data: str = ""
+    robot_controller: str | None = None
     controller_args: list[str] = field(default_factory=list)
     camera_width: int | None = None
     camera_height: int | None = None
@@ -314,6 +317,7 @@ def _scene(
         scene.robot_def = robot.def_name
         scene.robot_name = first_value(own, "name", Field.string) or scene.robot_name
         scene.robot_custom_data = first_value(own, "customData", Field.string) or ""
+        scene.robot_controller = first_value(own, "controller", Field.string)
         if robot.type_name in EPUCK_TYPES:
             # The E-puck PROTO's first HingeJoint is its left wheel's, the second its right's.
             scene.wheel_positions = (_saved_wheel(robot, 0), _saved_wheel(robot, 1))
@@ -332,7 +336,10 @@ def _scene(
             scene.traction_version = "2" if second else "1"
     scene.supervisor = bool(first_value(own, "supervisor", Field.flag))
     scene.synchronization = first_value(own, "synchronization", Field.flag) is not False
-    scene.lights = read_lights(tree, scene.nue)
+    robot_lines = {
+        node.start: line_of(node.type_start) for node in every if node.type_name in robot_types
+    }
+    scene.lights = read_lights(tree, scene.nue, lambda node: robot_lines.get(node.start))
     if (arguments := first_value(own, "controllerArgs", _itself)) is not None:
         strings = [t.text[1:-1] for t in arguments.tokens if t.kind == "string"]
         bracketed = bool(arguments.tokens) and arguments.tokens[0].kind == "["

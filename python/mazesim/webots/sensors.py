@@ -401,7 +401,7 @@ class LightSensor(_Tabled, _ScalarSensor):
 
     def _read(self) -> float:
         x, y, heading = self._mount.world_pose(self._simulation.simulator.pose)
-        light = irradiance(self._simulation.scene.lights, (x, y, self._mount.z), heading)
+        light = irradiance(self._simulation.lights_now(), (x, y, self._mount.z), heading)
         return self._table(light, self._rng)
 
 

@@ -21,6 +21,7 @@ import numpy.typing as npt
 from mazesim._core import RobotProfile, Simulator, World
 from mazesim.errors import InvalidArgumentError, UnknownNameError, _shown
 from mazesim.webots.keyboard import KeyScript
+from mazesim.webots.lights import Light, carried
 from mazesim.webots.own_sensors import OwnSensors, own_sensors
 from mazesim.webots.radio import Radio
 from mazesim.webots.scene import Row, Scene
@@ -267,6 +268,8 @@ class RobotSimulation:
         #: applies at its end.
         self._reset_asked = False
         self.paused = False
+        #: The lights where they stood at a step (:meth:`lights_now`), by its number.
+        self._lights_now: tuple[int, list[Light] | None] | None = None
 
     @property
     def time_is_up(self) -> bool:
@@ -282,6 +285,12 @@ class RobotSimulation:
             self.radio.transmit({self.robot_index: self.simulator.pose})
         if self.traction is not None:
             left, right = self.traction.drive(left, right, self.basic_time_step_ms / 1000.0)
+        holds = getattr(self.simulator, "hold_wheel_commands", None)
+        if holds is not None and self.wheel_motors:
+            # The world's process keeps the commands this step sends, which drive the wheels
+            # should the controller die without a word (Webots' motor node keeps them).
+            angles = self.wheel_angles()
+            holds(tuple(m._last_command(a) for m, a in zip(self.wheel_motors, angles)))
         if self.simulator.step(left, right) is True:
             self.world_over = True
             return
@@ -374,6 +383,38 @@ class RobotSimulation:
         self._yaw = yaw
         self.xs[-1] = x
         self.ys[-1] = y
+
+    def lights_now(self) -> list[Light] | None:
+        """The world's lights where they are now (:attr:`Scene.lights`): one a robot holds
+        moves with it (:func:`~mazesim.webots.lights.carried`), where this robot stands, or
+        another robot of a world run where the world's last step left it; a robot this run
+        does not simulate holds its lights where the world file puts it."""
+        lights = self.scene.lights
+        if not lights or all(light.carrier is None for light in lights):
+            return lights
+        if self._lights_now is not None and self._lights_now[0] == self.steps:
+            return self._lights_now[1]
+        starts = {int(r["line"]): r for r in self.report.get("robots") or [] if r.get("line")}
+        # A robot of a world run: the others stand where the world's process has them.
+        robots = self.fleet.robots() if self.fleet is not None else []
+        index_of = {int(r["line"]): int(r["index"]) for r in robots if r.get("line")}
+        poses: dict[int, Any] = {}
+        moved = []
+        for light in lights:
+            start = starts.get(light.carrier) if light.carrier is not None else None
+            if start is None or light.carrier is None:
+                moved.append(light)
+                continue
+            if light.carrier not in poses:
+                if light.carrier == self.report.get("robot_line"):
+                    poses[light.carrier] = self.simulator.pose
+                elif self.fleet is not None and light.carrier in index_of:
+                    poses[light.carrier] = self.fleet.pose(index_of[light.carrier])
+                else:
+                    poses[light.carrier] = start["pose"]
+            moved.append(carried(light, start["pose"], poses[light.carrier]))
+        self._lights_now = (self.steps, moved)
+        return moved
 
     def wheel_angles(self) -> tuple[float, float]:
         """The left and right wheel joints' positions (rad), as Webots' wheel sensors read them:

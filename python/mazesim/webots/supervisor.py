@@ -682,6 +682,13 @@ class Supervisor(Robot):
         robot_type = str(self._simulation.report.get("robot_model") or "E-puck")
         self._self = Node(robot_type, scene.robot_def or "", robot=True)
         self._self._strings.update(name=scene.robot_name, customData=self._custom_data)
+        if scene.robot_controller is not None or self._simulation.report.get("robot_model"):
+            # The robot node's field as Webots reads it: the file's, else its PROTO's default
+            # (the E-puck's e-puck_avoid_obstacles), else a Robot node's, "<generic>".
+            declared = declared_fields(robot_type).strings.get("controller", "<generic>")
+            self._self._strings["controller"] = (
+                declared if scene.robot_controller is None else scene.robot_controller
+            )
         self._mode = self.SIMULATION_MODE_FAST
         self._root = Node("Group", node_id=0)
         self._root._tree = self
