@@ -76,6 +76,7 @@ __all__ = [
     "public_names",
     "refusal",
     "refusal_error",
+    "ThenLoader",
     "TypeRefusal",
 ]
 
@@ -824,18 +825,21 @@ def guard_module(module: types.ModuleType) -> None:
             _guard_class(obj)
 
 
-class _CheckingLoader(importlib.abc.Loader):
-    """Executes a public module with its own loader, then puts the check on its surface."""
+class ThenLoader(importlib.abc.Loader):
+    """Executes a module with its own loader, then calls ``then`` with it: the one way the
+    package's import hooks act on a module once it is imported (here the argument check on a
+    public module's surface; :mod:`mazesim._gym_registration` the environments' registration)."""
 
-    def __init__(self, loader: Any) -> None:
+    def __init__(self, loader: Any, then: Callable[[types.ModuleType], None]) -> None:
         self._loader = loader
+        self._then = then
 
     def create_module(self, spec: importlib.machinery.ModuleSpec) -> types.ModuleType | None:
         return self._loader.create_module(spec)
 
     def exec_module(self, module: types.ModuleType) -> None:
         self._loader.exec_module(module)
-        guard_module(module)
+        self._then(module)
 
     def __getattr__(self, name: str) -> Any:
         return getattr(self._loader, name)
@@ -850,9 +854,9 @@ class _CheckingFinder(importlib.abc.MetaPathFinder):
         if not is_public_module(fullname) or fullname == "mazesim":
             return None
         spec = importlib.machinery.PathFinder.find_spec(fullname, path, target)
-        if spec is None or spec.loader is None or isinstance(spec.loader, _CheckingLoader):
+        if spec is None or spec.loader is None or isinstance(spec.loader, ThenLoader):
             return spec
-        spec.loader = _CheckingLoader(spec.loader)
+        spec.loader = ThenLoader(spec.loader, guard_module)
         return spec
 
 
