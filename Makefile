@@ -227,7 +227,9 @@ docs-deps: venv ## install the docs tools (mkdocs, Material, mkdocstrings) into 
 	@$(BIN)/python -c 'import mkdocs, material, mkdocstrings' 2>/dev/null || echo "make docs-deps: installing mkdocs, mkdocs-material and mkdocstrings (about 80 MB in $(VENV))"
 	$(BIN)/python -m pip install --quiet $(DOCS_PACKAGES)
 
-docs: docs-deps sb3-deps marl-deps ## build the documentation site into site/ (mkdocs --strict; the API page shows the SB3 adapter)
+# The API page is read from the sources (griffe), never imported: the SB3 adapter's page needs
+# neither Stable-Baselines3 nor torch, nor the multi-robot pages PettingZoo.
+docs: docs-deps ## build the documentation site into site/ (mkdocs --strict; no torch needed)
 	NO_MKDOCS_2_WARNING=1 $(BIN)/mkdocs build --strict --quiet
 
 # manylinux2014 (glibc 2.17 and newer: Ubuntu 20.04, Debian 11, RHEL 8, ...): maturin links the
