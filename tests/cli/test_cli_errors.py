@@ -557,6 +557,16 @@ def test_an_option_of_another_command_names_the_commands_that_take_it(
     assert line.endswith("unrecognized arguments: --no-such-option"), line
 
 
+def test_a_slip_of_the_commands_own_option_is_told_that_option_before_other_commands(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    # `mazesim eval --episode 3` was told that replay takes --episode, not eval's --episodes.
+    assert main(["eval", "--episode", "3"]) == 2
+    line = capsys.readouterr().err.strip().splitlines()[-1]
+    assert line.endswith("did you mean '--episodes' for '--episode'?"), line
+    assert "mazesim replay" not in line, line
+
+
 def test_the_navigator_demo_refuses_a_robot_it_would_not_drive(
     monkeypatch: pytest.MonkeyPatch, tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
