@@ -584,8 +584,25 @@ class _Parameters:
                 meaning = documented_argument(self.func, name)
                 raise InvalidArgumentError(
                     f"{self.func.__qualname__}: expected the argument {_shown(name)}, found none"
+                    + self._given_in_another_place(name, args)
                     + (f"; {name}: {meaning}" if meaning else "")
                 )
+
+    def _given_in_another_place(self, missing: str, args: tuple[Any, ...]) -> str:
+        """What to add when the value of a missing argument annotated with one of the package's
+        classes was given in another place (``plot_world(world)``, whose first argument is the
+        axes): which argument took it, and the order the function takes them in; "" otherwise."""
+        hint = self.by_name.get(missing)
+        if not (isinstance(hint, type) and hint.__module__.startswith("mazesim")):
+            return ""
+        for (name, _), value in zip(self.positional, args):  # noqa: B905 - extras: TypeError
+            if isinstance(value, hint):
+                order = ", ".join(known for known, _ in self.positional)
+                return (
+                    f" (the {hint.__name__} was given as {_shown(name)}: "
+                    f"{self.func.__name__}({order}))"
+                )
+        return ""
 
     def check_text(self, args: tuple[Any, ...], kwargs: dict[str, Any]) -> None:
         """Refuses, before the call, a text argument (``str`` or ``bytes``) its annotation does
