@@ -327,6 +327,23 @@ def test_eval_gets_the_shipped_navigator_meant_for_its_typo(
         )
 
 
+def test_eval_gets_the_trained_navigator_beside_meant_for_its_typo(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    from mazesim.learn import load_policy, save_policy
+
+    monkeypatch.chdir(tmp_path)
+    save_policy(load_policy("randomised"), tmp_path / "runs" / "my nav")
+    (tmp_path / "runs" / "my-notes").mkdir()  # a folder, but no navigator: never meant
+    for typed, meant in (
+        ("runs/my-nav", "; did you mean 'runs/my nav'?"),
+        ("runs/my-note", ""),
+    ):
+        assert main(["eval", "--policy", typed, "--episodes", "1"]) == 2
+        line = capsys.readouterr().err.strip().splitlines()[-1]
+        assert line.endswith(f"the seed-maze navigator){meant}"), line
+
+
 def _walled_in(start: str) -> str:
     """A 2 x 2-cell world named walled-in whose [start] table is ``start``."""
     rows = ["+--+--+", "|S    |", "+--+  +", "|G    |", "+--+--+"]
