@@ -49,7 +49,16 @@ help: ## list the targets
 	@echo "mazesim make targets:"
 	@grep -E '^[a-z-]+:.*## ' $(MAKEFILE_LIST) | sed -E 's/^([a-z-]+):.*## (.*)/  \1\t\2/' | expand -t 14
 
+# PYTHON= makes a new .venv only: one already there keeps its Python, which is said when the
+# asked-for one is another version (`make PYTHON=python3.9 demo` after a first `make demo`).
+PYTHON_VERSION_OF = $(1) -c 'import sys; print("%d.%d" % sys.version_info[:2])' 2>/dev/null
+
 venv: $(STAMP) ## create .venv (python3.11, else python3 >= 3.9) with maturin, numpy, matplotlib, pillow, tqdm
+	@if [ "$(origin PYTHON)" = "command line" ]; then \
+		asked=$$($(call PYTHON_VERSION_OF,$(PYTHON))); has=$$($(call PYTHON_VERSION_OF,$(BIN)/python)); \
+		[ "$$asked" = "$$has" ] || echo "make venv: $(VENV) already exists with Python $$has, and" \
+			"keeps it: PYTHON=$(PYTHON) (Python $${asked:-not found}) makes a new one only;" \
+			"remove $(VENV) first (rm -rf $(VENV)) to make it with $(PYTHON)" >&2; fi
 
 $(STAMP): Makefile
 	@test -x $(BIN)/python || $(PYTHON) -c 'import sys; sys.exit(sys.version_info < (3, 9))' 2>/dev/null \
