@@ -258,6 +258,9 @@ wheel: wheel-deps ## build the release wheel (abi3, manylinux2014 via zig, check
 	PATH="$(CURDIR)/$(BIN):$$PATH" $(BIN)/maturin build --release --zig --compatibility $(WHEEL_COMPATIBILITY) --out $(DIST)
 	$(BIN)/auditwheel show $(DIST)/mazesim-*.whl
 	$(BIN)/maturin sdist --out $(DIST)
+	@wheel=$$(ls $(DIST)/mazesim-*.whl); echo "make wheel: wrote $$wheel; install it into any" \
+		"virtual environment of Python >= $(PYTHON_MIN): python -m pip install '$$wheel'" \
+		"(with the RL environments: python -m pip install '$$wheel[gym]')"
 
 # The wheel on the oldest glibc reachable here (tests/oldest_glibc.py; docs/install.md): Debian
 # bullseye (glibc 2.31, Python 3.9), the oldest release deb.debian.org serves, in a chroot that
