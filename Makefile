@@ -49,7 +49,16 @@ help: ## list the targets
 	@echo "mazesim make targets:"
 	@grep -E '^[a-z-]+:.*## ' $(MAKEFILE_LIST) | sed -E 's/^([a-z-]+):.*## (.*)/  \1\t\2/' | expand -t 14
 
+# PYTHON= makes a new .venv only: one already there keeps its Python, which is said when the
+# asked-for one is another version (`make PYTHON=python3.9 demo` after a first `make demo`).
+PYTHON_VERSION_OF = $(1) -c 'import sys; print("%d.%d" % sys.version_info[:2])' 2>/dev/null
+
 venv: $(STAMP) ## create .venv (python3.11, else python3 >= 3.9) with maturin, numpy, matplotlib, pillow, tqdm
+	@if [ "$(origin PYTHON)" = "command line" ]; then \
+		asked=$$($(call PYTHON_VERSION_OF,$(PYTHON))); has=$$($(call PYTHON_VERSION_OF,$(BIN)/python)); \
+		[ "$$asked" = "$$has" ] || echo "make venv: $(VENV) already exists with Python $$has, and" \
+			"keeps it: PYTHON=$(PYTHON) (Python $${asked:-not found}) makes a new one only;" \
+			"remove $(VENV) first (rm -rf $(VENV)) to make it with $(PYTHON)" >&2; fi
 
 $(STAMP): Makefile
 	@test -x $(BIN)/python || $(PYTHON) -c 'import sys; sys.exit(sys.version_info < (3, 9))' 2>/dev/null \
@@ -227,7 +236,9 @@ docs-deps: venv ## install the docs tools (mkdocs, Material, mkdocstrings) into 
 	@$(BIN)/python -c 'import mkdocs, material, mkdocstrings' 2>/dev/null || echo "make docs-deps: installing mkdocs, mkdocs-material and mkdocstrings (about 80 MB in $(VENV))"
 	$(BIN)/python -m pip install --quiet $(DOCS_PACKAGES)
 
-docs: docs-deps sb3-deps marl-deps ## build the documentation site into site/ (mkdocs --strict; the API page shows the SB3 adapter)
+# The API page is read from the sources (griffe), never imported: the SB3 adapter's page needs
+# neither Stable-Baselines3 nor torch, nor the multi-robot pages PettingZoo.
+docs: docs-deps ## build the documentation site into site/ (mkdocs --strict; no torch needed)
 	NO_MKDOCS_2_WARNING=1 $(BIN)/mkdocs build --strict --quiet
 
 # manylinux2014 (glibc 2.17 and newer: Ubuntu 20.04, Debian 11, RHEL 8, ...): maturin links the
@@ -247,6 +258,9 @@ wheel: wheel-deps ## build the release wheel (abi3, manylinux2014 via zig, check
 	PATH="$(CURDIR)/$(BIN):$$PATH" $(BIN)/maturin build --release --zig --compatibility $(WHEEL_COMPATIBILITY) --out $(DIST)
 	$(BIN)/auditwheel show $(DIST)/mazesim-*.whl
 	$(BIN)/maturin sdist --out $(DIST)
+	@wheel=$$(ls $(DIST)/mazesim-*.whl); echo "make wheel: wrote $$wheel; install it into any" \
+		"virtual environment of Python >= $(PYTHON_MIN): python -m pip install '$$wheel'" \
+		"(with the RL environments: python -m pip install '$$wheel[gym]')"
 
 # The wheel on the oldest glibc reachable here (tests/oldest_glibc.py; docs/install.md): Debian
 # bullseye (glibc 2.31, Python 3.9), the oldest release deb.debian.org serves, in a chroot that

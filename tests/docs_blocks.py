@@ -185,3 +185,34 @@ def missing_output_lines(shown: str, printed: str) -> list[str]:
         for line in shown.splitlines()
         if line.strip() not in ("", "...") and " ".join(line.split()) not in printed_lines
     ]
+
+
+#: A guard against a site build that hangs, not a speed requirement.
+SITE_BUILD_TIMEOUT_S = 600
+
+
+def build_site(
+    root: Path, site: Path, hidden: tuple[str, ...] = ()
+) -> subprocess.CompletedProcess[str]:
+    """Builds the documentation site of ``root`` into ``site`` as ``make docs`` does (``mkdocs
+    build --strict``), in a fresh interpreter to which the top-level packages ``hidden`` look
+    absent (as if not installed)."""
+    script = (
+        "import sys\n"
+        "class Absent:\n"
+        "    def find_spec(self, name, path=None, target=None):\n"
+        f"        if name.split('.')[0] in {tuple(hidden)!r}:\n"
+        "            raise ModuleNotFoundError(f'No module named {name!r}', name=name)\n"
+        "sys.meta_path.insert(0, Absent())\n"
+        "from mkdocs.__main__ import cli\n"
+        "cli(['build', '--strict', '--quiet', '--site-dir', sys.argv[1]])\n"
+    )
+    return subprocess.run(
+        [sys.executable, "-c", script, str(site)],
+        cwd=root,
+        env={**os.environ, "NO_MKDOCS_2_WARNING": "1"},
+        capture_output=True,
+        text=True,
+        timeout=SITE_BUILD_TIMEOUT_S,
+        check=False,
+    )

@@ -22,6 +22,7 @@ from docs_blocks import (
     SHELL_LANGUAGES,
     TOML_LANGUAGES,
     Block,
+    build_site,
     console_commands,
     expand_snippets,
     missing_output_lines,
@@ -201,6 +202,21 @@ def test_api_reference_reads_the_core_stub() -> None:
     assert str(core["World"]["wall_boxes"].returns) == "npt.NDArray[np.float64]"
     mask = core["BatchSimulator"]["reset"].parameters["mask"]
     assert str(mask.annotation) == "npt.NDArray[np.bool_] | None"
+
+
+#: The optional packages ``make docs`` does without: the API page is read from the sources.
+NOT_FOR_THE_DOCS = ("torch", "stable_baselines3", "sb3_contrib", "pettingzoo")
+
+
+def test_the_site_builds_strict_without_torch_stable_baselines3_or_pettingzoo(
+    tmp_path: Path,
+) -> None:
+    pytest.importorskip("mkdocs", reason="the docs tools are not installed (make docs-deps)")
+    built = build_site(REPO, tmp_path / "site", hidden=NOT_FOR_THE_DOCS)
+    assert built.returncode == 0, built.stderr
+    api = (tmp_path / "site" / "api.html").read_text(encoding="utf-8")
+    assert "MazesimVecEnv" in api and "make_vec_env" in api  # the SB3 adapter's page
+    assert "maze_goals_v0" in api  # the PettingZoo envs'
 
 
 def test_output_blocks_name_the_lines_that_differ(tmp_path: Path) -> None:

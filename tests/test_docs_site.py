@@ -8,19 +8,15 @@ can drive (``make browser-deps``); ``make test`` installs both.
 from __future__ import annotations
 
 import importlib.util
-import os
-import subprocess
-import sys
 from pathlib import Path
 from typing import Any
 
 import pytest
 
+from docs_blocks import build_site
 from mazesim.replay.screenshot import chromium_problem
 
 REPO = Path(__file__).resolve().parent.parent
-#: A guard against a build that hangs, not a speed requirement.
-BUILD_TIMEOUT_S = 600
 
 pytestmark = [
     pytest.mark.skipif(
@@ -38,15 +34,7 @@ pytestmark = [
 def site(tmp_path_factory: pytest.TempPathFactory) -> Path:
     """The site, built as ``make docs`` builds it, into a temporary folder."""
     folder = tmp_path_factory.mktemp("site")
-    built = subprocess.run(
-        [sys.executable, "-m", "mkdocs", "build", "--quiet", "--site-dir", str(folder)],
-        cwd=REPO,
-        env={**os.environ, "NO_MKDOCS_2_WARNING": "1"},
-        capture_output=True,
-        text=True,
-        timeout=BUILD_TIMEOUT_S,
-        check=False,
-    )
+    built = build_site(REPO, folder)
     assert built.returncode == 0, built.stderr
     return folder
 

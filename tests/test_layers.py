@@ -21,7 +21,7 @@ LAYERS: tuple[tuple[str, ...], ...] = (
     ("ros", "distributed", "hrl"),
     ("transfer", "replay"),
     ("learn",),
-    ("episodes.py", "integrations", "marl"),
+    ("episodes.py", "integrations", "marl", "_gym_registration.py"),
     ("envs", "batch.py", "barcode"),
     ("maze.py", "odometry.py", "_seeding.py", "plotting.py", "webots", "benchmark",
      "controllers.py", "actions.py", "_checks.py", "_pickling.py"),

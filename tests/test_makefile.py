@@ -173,3 +173,29 @@ def test_the_targets_that_check_mazesim_marl_install_pettingzoo(
     target: str, tmp_path: Path
 ) -> None:
     assert '"pettingzoo>=1.24"' in _installed_by(_dry_run(target, tmp_path))
+
+
+def _fake_python(path: Path, version: str) -> Path:
+    """An executable that answers the Makefile's version question with ``version``."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(f"#!/bin/sh\necho {version}\n")
+    path.chmod(0o755)
+    return path
+
+
+@pytest.mark.skipif(shutil.which("make") is None, reason="needs make")
+def test_a_python_asked_for_after_the_venv_was_made_is_told_the_venv_keeps_its_own(
+    tmp_path: Path,
+) -> None:
+    venv = tmp_path / "venv"
+    _fake_python(venv / "bin" / "python", "3.11")
+    (venv / ".installed").touch()  # made, and newer than the Makefile
+    other = _fake_python(tmp_path / "python3.9", "3.9")
+    told = _make("venv", f"VENV={venv}", f"PYTHON={other}")
+    assert told.returncode == 0, told.stderr
+    assert f"{venv} already exists with Python 3.11, and keeps it: PYTHON={other} (Python " in (
+        told.stderr
+    )
+    assert f"remove {venv} first (rm -rf {venv}) to make it with {other}" in told.stderr
+    same = _make("venv", f"VENV={venv}", f"PYTHON={_fake_python(tmp_path / 'py311', '3.11')}")
+    assert same.returncode == 0 and same.stderr == "", same.stderr

@@ -81,6 +81,12 @@ def test_auditwheel_accepts_the_wheel_for_its_tag(made: tuple[Path, Path, str]) 
     text = " ".join(shown.stdout.split())
     assert 'consistent with the following platform tag: "manylinux_2_17_x86_64"' in text, text
     assert 'platform tag: "manylinux_2_17_x86_64"' in " ".join(printed.split())  # make showed it
+    # It ends saying how to install the wheel it wrote, as the next test does.
+    install = (
+        f"python -m pip install '{wheel}' (with the RL environments: python -m pip install "
+        f"'{wheel}[gym]')"
+    )
+    assert any(line.endswith(install) for line in printed.splitlines()), printed
 
 
 def test_sdist_carries_what_the_core_embeds(built: tuple[Path, Path]) -> None:

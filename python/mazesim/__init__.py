@@ -209,11 +209,9 @@ def _grid_map_advice(path: str) -> str:
 
 _checks.guard_module(_checks.sys.modules[__name__])
 
-# gymnasium is optional (pip install "mazesim[gym]"): with it, importing mazesim registers
-# mazesim/EPuckMaze-v0 (see mazesim.envs).
-import importlib.util as _importlib_util  # noqa: E402
+# gymnasium is optional (pip install "mazesim[gym]"): with it, mazesim/EPuckMaze-v0 and the task
+# suite are registered once both mazesim and gymnasium are imported, in either order; importing
+# mazesim alone does not import gymnasium (mazesim._gym_registration).
+from mazesim import _gym_registration  # noqa: E402
 
-if _importlib_util.find_spec("gymnasium") is not None:
-    from mazesim.envs import register_envs
-
-    register_envs()
+_gym_registration.register_when_gymnasium_is_imported()

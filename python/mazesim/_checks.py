@@ -76,6 +76,7 @@ __all__ = [
     "public_names",
     "refusal",
     "refusal_error",
+    "ThenLoader",
     "TypeRefusal",
 ]
 
@@ -583,8 +584,25 @@ class _Parameters:
                 meaning = documented_argument(self.func, name)
                 raise InvalidArgumentError(
                     f"{self.func.__qualname__}: expected the argument {_shown(name)}, found none"
+                    + self._given_in_another_place(name, args)
                     + (f"; {name}: {meaning}" if meaning else "")
                 )
+
+    def _given_in_another_place(self, missing: str, args: tuple[Any, ...]) -> str:
+        """What to add when the value of a missing argument annotated with one of the package's
+        classes was given in another place (``plot_world(world)``, whose first argument is the
+        axes): which argument took it, and the order the function takes them in; "" otherwise."""
+        hint = self.by_name.get(missing)
+        if not (isinstance(hint, type) and hint.__module__.startswith("mazesim")):
+            return ""
+        for (name, _), value in zip(self.positional, args):  # noqa: B905 - extras: TypeError
+            if isinstance(value, hint):
+                order = ", ".join(known for known, _ in self.positional)
+                return (
+                    f" (the {hint.__name__} was given as {_shown(name)}: "
+                    f"{self.func.__name__}({order}))"
+                )
+        return ""
 
     def check_text(self, args: tuple[Any, ...], kwargs: dict[str, Any]) -> None:
         """Refuses, before the call, a text argument (``str`` or ``bytes``) its annotation does
@@ -824,18 +842,21 @@ def guard_module(module: types.ModuleType) -> None:
             _guard_class(obj)
 
 
-class _CheckingLoader(importlib.abc.Loader):
-    """Executes a public module with its own loader, then puts the check on its surface."""
+class ThenLoader(importlib.abc.Loader):
+    """Executes a module with its own loader, then calls ``then`` with it: the one way the
+    package's import hooks act on a module once it is imported (here the argument check on a
+    public module's surface; :mod:`mazesim._gym_registration` the environments' registration)."""
 
-    def __init__(self, loader: Any) -> None:
+    def __init__(self, loader: Any, then: Callable[[types.ModuleType], None]) -> None:
         self._loader = loader
+        self._then = then
 
     def create_module(self, spec: importlib.machinery.ModuleSpec) -> types.ModuleType | None:
         return self._loader.create_module(spec)
 
     def exec_module(self, module: types.ModuleType) -> None:
         self._loader.exec_module(module)
-        guard_module(module)
+        self._then(module)
 
     def __getattr__(self, name: str) -> Any:
         return getattr(self._loader, name)
@@ -850,9 +871,9 @@ class _CheckingFinder(importlib.abc.MetaPathFinder):
         if not is_public_module(fullname) or fullname == "mazesim":
             return None
         spec = importlib.machinery.PathFinder.find_spec(fullname, path, target)
-        if spec is None or spec.loader is None or isinstance(spec.loader, _CheckingLoader):
+        if spec is None or spec.loader is None or isinstance(spec.loader, ThenLoader):
             return spec
-        spec.loader = _CheckingLoader(spec.loader)
+        spec.loader = ThenLoader(spec.loader, guard_module)
         return spec
 
 

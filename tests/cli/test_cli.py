@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import shlex
 import subprocess
 import sys
 from pathlib import Path
@@ -256,6 +257,14 @@ NO_REPLAY = "; add --html run.html for a replay to watch in a browser"
             "open run/replay.html in a browser to watch the run (offline)",
         ),
         (
+            ["demo", "--seconds", "1", "--out", "my runs", "--html", "my runs/replay.html"],
+            "open 'my runs/replay.html' in a browser to watch the run (offline)",
+        ),
+        (
+            ["demo", "--seconds", "1", "--out", "l'essai"],
+            "open 'l'\"'\"'essai/trajectory.png'" + NO_REPLAY,
+        ),
+        (
             ["webots", "run", "CONTROLLER", "--seconds", "1"],
             "open TMP/mazesim-webots/trajectory.png" + NO_REPLAY,
         ),
@@ -273,6 +282,20 @@ def test_a_run_command_ends_with_what_to_open_next(
     assert main([str(example) if word == "CONTROLLER" else word for word in arguments]) == 0
     last = capsys.readouterr().out.splitlines()[-1]
     assert last == f"next               {then.replace('TMP', str(tmp_path))}"
+
+
+def test_the_paths_a_run_command_prints_paste_into_a_shell_as_the_files_it_wrote(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    monkeypatch.chdir(tmp_path)
+    out = "my runs/d\u00e9mo $1"
+    assert main(["demo", "--seconds", "1", "--out", out, "--html", f"{out}/replay.html"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    wrote = lines[-2].removeprefix("wrote").strip()
+    files = [shlex.split(word)[0] for word in wrote.split(", ")]
+    assert files and all((tmp_path / file).is_file() for file in files), files
+    (page,) = shlex.split(lines[-1])[2:3]
+    assert page == f"{out}/replay.html" and (tmp_path / page).is_file()
 
 
 def test_a_demo_of_a_robot_profile_file_names_the_file(

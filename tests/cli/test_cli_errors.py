@@ -327,6 +327,23 @@ def test_eval_gets_the_shipped_navigator_meant_for_its_typo(
         )
 
 
+def test_eval_gets_the_trained_navigator_beside_meant_for_its_typo(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    from mazesim.learn import load_policy, save_policy
+
+    monkeypatch.chdir(tmp_path)
+    save_policy(load_policy("randomised"), tmp_path / "runs" / "my nav")
+    (tmp_path / "runs" / "my-notes").mkdir()  # a folder, but no navigator: never meant
+    for typed, meant in (
+        ("runs/my-nav", "; did you mean 'runs/my nav'?"),
+        ("runs/my-note", ""),
+    ):
+        assert main(["eval", "--policy", typed, "--episodes", "1"]) == 2
+        line = capsys.readouterr().err.strip().splitlines()[-1]
+        assert line.endswith(f"the seed-maze navigator){meant}"), line
+
+
 def _walled_in(start: str) -> str:
     """A 2 x 2-cell world named walled-in whose [start] table is ``start``."""
     rows = ["+--+--+", "|S    |", "+--+  +", "|G    |", "+--+--+"]
@@ -555,6 +572,16 @@ def test_an_option_of_another_command_names_the_commands_that_take_it(
     assert main(["eval", "--no-such-option"]) == 2  # nobody takes it: nothing added
     line = capsys.readouterr().err.strip().splitlines()[-1]
     assert line.endswith("unrecognized arguments: --no-such-option"), line
+
+
+def test_a_slip_of_the_commands_own_option_is_told_that_option_before_other_commands(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    # `mazesim eval --episode 3` was told that replay takes --episode, not eval's --episodes.
+    assert main(["eval", "--episode", "3"]) == 2
+    line = capsys.readouterr().err.strip().splitlines()[-1]
+    assert line.endswith("did you mean '--episodes' for '--episode'?"), line
+    assert "mazesim replay" not in line, line
 
 
 def test_the_navigator_demo_refuses_a_robot_it_would_not_drive(

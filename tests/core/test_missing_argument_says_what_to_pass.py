@@ -41,3 +41,18 @@ def test_a_parameter_is_read_from_its_args_entry_continuation_lines_joined() -> 
     assert documented_argument(_described, "b") == "The second."
     assert documented_argument(_described, "c") is None
     assert documented_argument(_undocumented, "a") is None
+
+
+def test_a_missing_argument_given_in_the_place_of_another_says_which_and_the_order() -> None:
+    from mazesim.plotting import plot_world
+
+    world = mazesim.load_world("seed-maze")
+    with pytest.raises(mazesim.InvalidArgumentError) as raised:
+        plot_world(world)  # type: ignore[call-arg]
+    message = str(raised.value)
+    assert "expected the argument 'world', found none (the World was given as 'ax': " in message
+    assert "plot_world(ax, world))" in message, message
+    with pytest.raises(mazesim.InvalidArgumentError) as raised:
+        plot_world(None)  # type: ignore[call-arg]
+    message = str(raised.value)
+    assert "expected the argument 'world', found none; world: " in message, message

@@ -200,6 +200,19 @@ def test_a_malformed_checkpoint_is_refused(
         train(RUN, RunFolder(tmp_path, resume=True), progress=None, threads=1)
 
 
+def test_resuming_where_no_run_wrote_a_checkpoint_says_to_start_without_resume(
+    tmp_path: Path,
+) -> None:
+    with pytest.raises(PolicyFormatError) as refused:
+        RunFolder(tmp_path / "never-trained", resume=True).start({"seed": 0})
+    message = str(refused.value)
+    assert message.startswith(f"{tmp_path / 'never-trained' / CHECKPOINT_FILE}: no checkpoint")
+    assert message.endswith(
+        "start a fresh run there without resume (mazesim train: without --resume)"
+    )
+    assert not (tmp_path / "never-trained").exists()
+
+
 def test_other_settings_cannot_resume(tmp_path: Path, one_round: Path) -> None:
     _copy_of(one_round, tmp_path)
     other = dataclasses.replace(RUN, seed=RUN.seed + 1)

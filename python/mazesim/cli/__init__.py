@@ -173,15 +173,20 @@ def _refuse_unknown(
         option.lstrip("-"): option for action in parser._actions for option in action.option_strings
     }
     typed = [word.partition("=")[0] for word in unknown if word.startswith("-")]
-    # An option another command takes is named as such, not read as a slip of one of this
-    # command's (`webots run --robot` is no shortened `--robot-controller`).
-    elsewhere = _commands_taking(typed, parser.prog)
+    # A slip of one of this command's own options (`eval --episode`) is told that option, even
+    # when another command takes the word as typed (replay's --episode); an option no closer to
+    # one of this command's is named as another command's (`demo --policy`).
+    closest_of = {word: _closest_name(word.lstrip("-"), list(options), 0.8) for word in typed}
     meant = [
         f"{options[closest]!r} for {word!r}"
-        for word in typed
-        if word not in elsewhere
-        and (closest := _closest_name(word.lstrip("-"), list(options), 0.8)) is not None
+        for word, closest in closest_of.items()
+        if closest is not None
     ]
+    elsewhere = {
+        word: taken
+        for word, taken in _commands_taking(typed, parser.prog).items()
+        if closest_of[word] is None
+    }
     # An argument the command takes without an option, given with one (`show --world X`).
     positional = {
         name: str(action.metavar or action.dest)

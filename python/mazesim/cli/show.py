@@ -128,4 +128,4 @@ def _show_one(
             f"learn it ({shell_command('mazesim', 'train', '--world', name)})\n"
         )
     if args.open and not webbrowser.open(Path(path).resolve().as_uri()):
-        out.write(f"no viewer could be started here; open {path} yourself\n")
+        out.write(f"no viewer could be started here; open {shell_command(path)} yourself\n")

@@ -1,7 +1,8 @@
 """Gymnasium environments: ``mazesim/EPuckMaze-v0`` and its native vector env.
 
-``import mazesim`` registers the task suite (:mod:`mazesim.envs.tasks`) when gymnasium is installed
-(``pip install "mazesim[gym]"``)::
+The task suite (:mod:`mazesim.envs.tasks`) is registered once both mazesim and gymnasium are
+imported, in either order (``pip install "mazesim[gym]"``); ``import mazesim`` alone does not
+import gymnasium::
 
     import gymnasium
     import mazesim  # registers mazesim/EPuckMaze-v0
@@ -58,6 +59,10 @@ def register_envs() -> None:
     """Registers the task suite (:mod:`mazesim.envs.tasks`), ``mazesim/EPuckMaze-v0`` first, with
     single and vector entry points.
 
-    ``import mazesim`` calls it; calling it again does nothing.
+    Importing this package calls it, and ``import mazesim`` imports this package when gymnasium
+    is imported (:mod:`mazesim._gym_registration`); calling it again does nothing.
     """
     register_tasks()
+
+
+register_envs()

@@ -130,7 +130,11 @@ class RunFolder:
         saved = None
         if self.resume:
             if not checkpoint_exists(folder):
-                raise PolicyFormatError(f"{folder / CHECKPOINT_FILE}: no checkpoint to resume from")
+                raise PolicyFormatError(
+                    f"{folder / CHECKPOINT_FILE}: no checkpoint to resume from; a run writes one "
+                    "into its output folder as it trains: start a fresh run there without resume "
+                    "(mazesim train: without --resume)"
+                )
             saved = read_checkpoint(folder, settings)
             self.resumed_seconds = saved.lower_seconds
         elif (folder / METADATA_FILE).exists():

@@ -685,6 +685,30 @@ def _checked_policy_arrays(where: Path) -> Any:
     return arrays_of
 
 
+def _closest_navigator(path: Path) -> str | None:
+    """The navigator a missing ``path`` likely meant: the closest of the navigators' folders
+    beside it (holding a navigator or a run's checkpoint) and, for a bare name, of the shipped
+    ones."""
+    parent = path.parent
+    try:
+        beside = [
+            entry.name
+            for entry in sorted(parent.iterdir())
+            if entry.is_dir() and ((entry / METADATA_FILE).exists() or checkpoint_exists(entry))
+        ][:MOST_NAVIGATORS_COMPARED]
+    except OSError:
+        beside = []
+    shipped = list(SHIPPED_NAVIGATORS) if path.name == str(path) else []
+    closest = _closest_name(path.name, [*beside, *shipped])
+    if closest is None or closest in shipped:
+        return closest
+    return str(parent / closest)
+
+
+#: The most folders beside a missing navigator's that are compared with its name.
+MOST_NAVIGATORS_COMPARED = 1000
+
+
 def load_policy(folder: str | os.PathLike[str] | None = None) -> TrainedPolicy:
     """Loads a navigator saved by :func:`save_policy` (by default the one shipped for seed-maze;
     ``"randomised"``: the one trained with domain randomisation, see :func:`navigator_folder`).
@@ -702,9 +726,7 @@ def load_policy(folder: str | os.PathLike[str] | None = None) -> TrainedPolicy:
     if not path.exists():
         where = "" if path.is_absolute() else f" in {os.getcwd()}"
         shipped = ", ".join(repr(name) for name in SHIPPED_NAVIGATORS)
-        meant = (
-            _closest_name(str(path), list(SHIPPED_NAVIGATORS)) if path.name == str(path) else None
-        )
+        meant = _closest_navigator(path)
         raise PolicyFormatError(
             f"{meta_path}: no such file: there is no folder {_shown(str(path))}{where}; a "
             "navigator is "

@@ -15,7 +15,7 @@ import os
 from typing import Any, TextIO
 
 from mazesim._core import RobotProfile, Simulator, World
-from mazesim._paths import output_file
+from mazesim._paths import output_file, shell_command
 from mazesim.replay.run import RecordedRun
 
 __all__ = [
@@ -112,14 +112,18 @@ def write_views(args: argparse.Namespace, run: RecordedRun, title: str | None = 
 
 def written_lines(args: argparse.Namespace, picture: str, written: list[str]) -> str:
     """The last lines of a run command's summary: the files it wrote, and what to open next (the
-    replay page when it wrote one, else the picture and how to get a replay)."""
+    replay page when it wrote one, else the picture and how to get a replay). Every path is
+    quoted as a shell needs it (:func:`mazesim._paths.shell_command`), so that one holding
+    spaces pastes as one word."""
     html = getattr(args, "html", None)
     then = (
-        f"open {os.fspath(html)} in a browser to watch the run (offline)"
+        f"open {shell_command(html)} in a browser to watch the run (offline)"
         if html
-        else f"open {picture}; add --html run.html for a replay to watch in a browser"
+        else f"open {shell_command(picture)}; add --html run.html for a replay to watch in a "
+        "browser"
     )
-    return f"wrote              {', '.join(written)}\nnext               {then}\n"
+    files = ", ".join(shell_command(path) for path in written)
+    return f"wrote              {files}\nnext               {then}\n"
 
 
 def play_live(run: RecordedRun, title: str, stream: TextIO | None = None) -> None:
