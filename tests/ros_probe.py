@@ -21,6 +21,11 @@ environment) and read its standard output.
     ros_probe.py drive-sleeping PERIOD COMMANDS_JSON
                                        the same with rospy.sleep(PERIOD) after each command: its
                                        times count from whenever the sleep starts
+    ros_probe.py drive-on-timer PERIOD COMMANDS_JSON STATES
+                                       a rospy.Timer(rospy.Duration(PERIOD)) made right after
+                                       init_node, before any /clock (its ticks at the multiples
+                                       of PERIOD), publishes the next command at each tick;
+                                       returns once STATES states of distinct times have come
     ros_probe.py listen SECONDS        record what the bridge publishes for SECONDS (wall clock)
     ros_probe.py count TOPIC N         receive N messages of TOPIC (e.g. from rosbag play)
     ros_probe.py count-with-clock TOPIC N
@@ -312,6 +317,41 @@ def drive_at_rate(
     return recorder.result()
 
 
+def drive_on_timer(period: float, commands: list[dict[str, Any]]) -> dict[str, Any]:
+    """Publishes the next command at each tick of a ``rospy.Timer`` made before anything else
+    (as a node does in its constructor, on simulated time still at zero), the state topics
+    recorded on the side; returns once the last command's hold is over."""
+    if rospy.rostime.is_wallclock():
+        raise SystemExit("expected /use_sim_time: rospy.Timer would not count simulated time")
+    motor = publisher("motor", Float64MultiArray)
+    queue = list(commands)
+    sent = threading.Event()
+
+    def tick(event: Any) -> None:
+        if queue and motor.get_num_connections():
+            motor.publish(Float64MultiArray(data=queue.pop(0)["data"]))
+            if not queue:
+                sent.set()
+
+    timer = rospy.Timer(rospy.Duration(period), tick)
+    recorder = Recorder(STATE_TOPICS[:2])
+    if not sent.wait(TIMEOUT_S):
+        raise SystemExit(f"the timer sent {len(commands) - len(queue)} of {len(commands)}")
+    timer.shutdown()
+    # Every state up to the end of the last command's hold (the reset state may come twice).
+    states = int(sys.argv[4])
+    with recorder.lock:
+        if not recorder.lock.wait_for(
+            lambda: (
+                len({pose[3] for pose in recorder.data["pose"]}) >= states
+                and len(recorder.data["sensors"]) >= len(recorder.data["pose"])
+            ),
+            TIMEOUT_S,
+        ):
+            raise SystemExit(f"expected {states} states; have {len(recorder.data['pose'])}")
+    return recorder.result()
+
+
 def main() -> int:
     mode = sys.argv[1]
     rospy.init_node("ros_probe", anonymous=True, disable_signals=True)
@@ -329,6 +369,9 @@ def main() -> int:
                 result = drive_at_rate(
                     float(sys.argv[2]), json.load(handle), mode == "drive-sleeping"
                 )
+        elif mode == "drive-on-timer":
+            with open(sys.argv[3]) as handle:
+                result = drive_on_timer(float(sys.argv[2]), json.load(handle))
         elif mode == "listen":
             recorder = Recorder(STATE_TOPICS)
             time.sleep(float(sys.argv[2]))

@@ -361,9 +361,17 @@ class Bridge:
                     "start; one that commands at a rospy.Rate slower than the control step: "
                     "run the bridge with --command-period, the rate's period)"
                 )
+            if self.idle_steps == 0:
+                self.hold.start(self._stamp())  # the first tick of a timer on command_period
             self.idle_steps += 1
             self.clock_publisher.publish(self.ros.Clock(clock=self._clock_time()))
             self.idle_tick_at += self.simulator.control_step_ms / 1000.0
+            if self.hold.active and not self.hold.holds(self._stamp()):
+                # At the controller's tick: its timer fires now (rospy.Timer made in its
+                # constructor); the clock waits there for its command before it goes on, so
+                # the command comes at this stamp whatever the load, and the run is the same.
+                self.idle_tick_at += IDLE_CLOCK_AFTER_S
+                self.hold.start(self._stamp())
             return max(self.idle_tick_at - time.monotonic(), 0.0)
 
     def _finished(self) -> bool:
