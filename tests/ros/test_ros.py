@@ -743,6 +743,20 @@ def rate_holds(
     return holds
 
 
+@needs_ros
+def test_a_goal_follower_gets_the_state_again_once_its_goal_came(master: LocalMaster) -> None:
+    # A goal follower without actionlib ignores odometry until a goal comes on
+    # move_base_simple/goal (rviz's 2D Nav Goal), then answers each odom. The reset state had
+    # gone by: it waited for that state sent again 5 s after it went out. The bridge notes the
+    # goal and, with no command 0.5 s later, publishes the state again.
+    spawn_bridge(master, "--seed", "2", "--duration", str(10 * 0.032))
+    seen = run_probe(master, "drive-after-goal", "10")
+    assert seen["answered"][0] < 1e-6  # the reset state, stamped 1 ns
+    assert seen["answered"][1:] == pytest.approx([step * 0.032 for step in range(1, 10)])
+    log = Path(master.log_path("bridge")).read_text()
+    assert "a goal came on /move_base_simple/goal and no command" in log
+
+
 def commands_on_sim_time(
     master: LocalMaster, tmp_path: Path, seed: int, *bridge_options: str
 ) -> tuple[list[dict[str, Any]], Path]:

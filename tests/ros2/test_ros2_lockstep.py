@@ -316,6 +316,60 @@ ANSWERS = 2
 )
 
 
+def test_a_navigator_given_a_goal_after_the_reset_state_gets_that_state_again() -> None:
+    # A navigator that answers /odom only once a goal has come on /goal_pose (rviz2's 2D Goal
+    # Pose, here a second after the reset state reached it) let the reset state go by and
+    # waited for it sent again after 5 s; the bridge notes the goal and sends it 0.5 s later.
+    node = [sys.executable, "-c", _DRIVE_ONCE_A_GOAL_CAME]
+    result = run_in_namespace([_bridge("humble", 3)], node)
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.split() == ["reset-pose:1", "answered:1..64000000"]
+    assert "or a goal came on /goal_pose" in result.stderr
+    assert "no command 5 s after the reset state" not in result.stderr
+    assert "stopped after 3 steps" in result.stderr
+
+
+#: Takes the reset state's /pose, sends a goal on /goal_pose a second later (as a PoseStamped:
+#: its CDR written by rosbags), then answers each /odom from there.
+_DRIVE_ONCE_A_GOAL_CAME = """
+import time
+from rosbags.typesys import Stores, get_typestore
+from mazesim.ros2 import cdr
+from mazesim.ros2.node import Node
+from mazesim.ros2.qos import COMMAND, TopicQos
+node = Node("navigator")
+pose = node.reader("/pose", "std_msgs/msg/Float64MultiArray", TopicQos(True, False, 10))
+odom = node.reader("/odom", "nav_msgs/msg/Odometry", TopicQos(True, False, 10))
+cmd_vel = node.writer("/cmd_vel", "geometry_msgs/msg/Twist", COMMAND)
+goal = node.writer("/goal_pose", "geometry_msgs/msg/PoseStamped", TopicQos(True, False, 10))
+deadline = time.monotonic() + 120  # a ceiling for a hang: each wait ends on what it waits for
+found = []
+while not found and time.monotonic() < deadline:
+    found = pose.take(1)
+    time.sleep(0.005)
+print(f"reset-pose:{round(cdr.decode_float64_array(found[0])[3] * 1e9) or 1}", flush=True)
+time.sleep(1.0)  # the user clicks a second after the robot appeared
+odom.take()  # the states before the goal go by unanswered
+store = get_typestore(Stores.ROS2_HUMBLE)
+kind = store.types["geometry_msgs/msg/PoseStamped"]
+goal.publish(bytes(store.serialize_cdr(kind(header=store.types["std_msgs/msg/Header"](
+    stamp=store.types["builtin_interfaces/msg/Time"](sec=0, nanosec=0), frame_id="map"),
+    pose=store.types["geometry_msgs/msg/Pose"](
+        position=store.types["geometry_msgs/msg/Point"](x=0.3, y=0.125, z=0.0),
+        orientation=store.types["geometry_msgs/msg/Quaternion"](x=0.0, y=0.0, z=0.0, w=1.0))),
+    "geometry_msgs/msg/PoseStamped")))
+twist = cdr.encode_twist((0.05, 0.0, 0.0), (0.0, 0.0, 0.3))
+stamps = []
+while len(stamps) < 3 and time.monotonic() < deadline:
+    for data in odom.take():
+        stamps.append(cdr.decode_clock(data))
+        cmd_vel.publish(twist)
+    time.sleep(0.002)
+cmd_vel.dds.wait_for_acks(120 * 10**9)  # the last command reaches the bridge before this ends
+print(f"answered:{stamps[0]}..{stamps[-1]}" if stamps else "answered:nothing")
+"""
+
+
 #: Answers each /odom with one /cmd_vel, as many times as its first argument says, in the
 #: namespace its second names if any; prints the stamps of the first and last odometry answered.
 _ANSWER_ODOM = """
