@@ -229,11 +229,9 @@ def test_a_node_waiting_for_odom_before_its_command_writer_gets_the_reset_state(
     assert "stopped after 5 steps" in result.stderr
 
 
-#: The end of a node's script: sends a first command, then answers each /odom with one until it
-#: has answered ANSWERS; prints the stamps of the first and last odometry answered.
-_SEND_AND_ANSWER_ODOM = """
-twist = cdr.encode_twist((0.05, 0.0, 0.0), (0.0, 0.0, 0.3))
-cmd_vel.publish(twist)
+#: The end of a node's script: answers each /odom with one command until it has answered
+#: ANSWERS; prints the stamps of the first and last odometry answered.
+_ANSWER_ODOM_UNTIL = """
 stamps = []
 while len(stamps) < ANSWERS and time.monotonic() < deadline:
     for data in odom.take():
@@ -243,6 +241,14 @@ while len(stamps) < ANSWERS and time.monotonic() < deadline:
 cmd_vel.dds.wait_for_acks(120 * 10**9)  # the last command reaches the bridge before this ends
 print(f"answered:{stamps[0]}..{stamps[-1]}" if stamps else "answered:nothing")
 """
+#: The same after a first command.
+_SEND_AND_ANSWER_ODOM = (
+    """
+twist = cdr.encode_twist((0.05, 0.0, 0.0), (0.0, 0.0, 0.3))
+cmd_vel.publish(twist)
+"""
+    + _ANSWER_ODOM_UNTIL
+)
 
 
 #: Waits for one /odom on a reader of its own (depth 1), then creates its /cmd_vel writer and
@@ -331,7 +337,8 @@ def test_a_navigator_given_a_goal_after_the_reset_state_gets_that_state_again() 
 
 #: Takes the reset state's /pose, sends a goal on /goal_pose a second later (as a PoseStamped:
 #: its CDR written by rosbags), then answers each /odom from there.
-_DRIVE_ONCE_A_GOAL_CAME = """
+_DRIVE_ONCE_A_GOAL_CAME = (
+    """
 import time
 from rosbags.typesys import Stores, get_typestore
 from mazesim.ros2 import cdr
@@ -359,15 +366,10 @@ goal.publish(bytes(store.serialize_cdr(kind(header=store.types["std_msgs/msg/Hea
         orientation=store.types["geometry_msgs/msg/Quaternion"](x=0.0, y=0.0, z=0.0, w=1.0))),
     "geometry_msgs/msg/PoseStamped")))
 twist = cdr.encode_twist((0.05, 0.0, 0.0), (0.0, 0.0, 0.3))
-stamps = []
-while len(stamps) < 3 and time.monotonic() < deadline:
-    for data in odom.take():
-        stamps.append(cdr.decode_clock(data))
-        cmd_vel.publish(twist)
-    time.sleep(0.002)
-cmd_vel.dds.wait_for_acks(120 * 10**9)  # the last command reaches the bridge before this ends
-print(f"answered:{stamps[0]}..{stamps[-1]}" if stamps else "answered:nothing")
+ANSWERS = 3
 """
+    + _ANSWER_ODOM_UNTIL
+)
 
 
 #: Answers each /odom with one /cmd_vel, as many times as its first argument says, in the
