@@ -101,6 +101,7 @@ PAGE_CONSTANTS: dict[str, dict[str, str]] = {
         "1 s": "the lockstep bridge's wait after that before its clock runs on its own",
         "6.4 s": "the argument of the page's run_until example",
         "0.1 s": "the period of the tests' and stand-ins' nodes on a timer of simulated time",
+        "0.25 s": "the lockstep bridge's wait between the first state's motion and its sensors",
     },
     "webots.md": {
         "1 %": "the LightSensor PROTO table's noise (Webots' source)",

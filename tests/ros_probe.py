@@ -21,6 +21,14 @@ environment) and read its standard output.
     ros_probe.py drive-sleeping PERIOD COMMANDS_JSON
                                        the same with rospy.sleep(PERIOD) after each command: its
                                        times count from whenever the sleep starts
+    ros_probe.py drive-on-timer PERIOD COMMANDS_JSON STATES
+                                       a rospy.Timer(rospy.Duration(PERIOD)) made right after
+                                       init_node, before any /clock (its ticks at the multiples
+                                       of PERIOD), publishes the next command at each tick;
+                                       returns once STATES states of distinct times have come
+    ros_probe.py drive-after-goal N   send a goal on move_base_simple/goal once an odom has come
+                                       (a click on rviz's 2D Nav Goal), then answer each odom
+                                       with a cmd_vel twist, N times; the stamps answered
     ros_probe.py listen SECONDS        record what the bridge publishes for SECONDS (wall clock)
     ros_probe.py count TOPIC N         receive N messages of TOPIC (e.g. from rosbag play)
     ros_probe.py count-with-clock TOPIC N
@@ -45,7 +53,7 @@ import warnings
 from typing import Any
 
 import rospy
-from geometry_msgs.msg import Twist
+from geometry_msgs.msg import PoseStamped, Twist
 from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import LaserScan, Range
@@ -312,6 +320,74 @@ def drive_at_rate(
     return recorder.result()
 
 
+def drive_on_timer(period: float, commands: list[dict[str, Any]]) -> dict[str, Any]:
+    """Publishes the next command at each tick of a ``rospy.Timer`` made before anything else
+    (as a node does in its constructor, on simulated time still at zero), the state topics
+    recorded on the side; returns once the last command's hold is over."""
+    if rospy.rostime.is_wallclock():
+        raise SystemExit("expected /use_sim_time: rospy.Timer would not count simulated time")
+    motor = publisher("motor", Float64MultiArray)
+    queue = list(commands)
+    sent = threading.Event()
+
+    def tick(event: Any) -> None:
+        if queue and motor.get_num_connections():
+            motor.publish(Float64MultiArray(data=queue.pop(0)["data"]))
+            if not queue:
+                sent.set()
+
+    timer = rospy.Timer(rospy.Duration(period), tick)
+    recorder = Recorder(STATE_TOPICS[:2])
+    if not sent.wait(TIMEOUT_S):
+        raise SystemExit(f"the timer sent {len(commands) - len(queue)} of {len(commands)}")
+    timer.shutdown()
+    # Every state up to the end of the last command's hold (the reset state may come twice).
+    states = int(sys.argv[4])
+    with recorder.lock:
+        if not recorder.lock.wait_for(
+            lambda: (
+                len({pose[3] for pose in recorder.data["pose"]}) >= states
+                and len(recorder.data["sensors"]) >= len(recorder.data["pose"])
+            ),
+            TIMEOUT_S,
+        ):
+            raise SystemExit(f"expected {states} states; have {len(recorder.data['pose'])}")
+    return recorder.result()
+
+
+def drive_after_goal(count: int) -> dict[str, Any]:
+    """Sends a goal on ``move_base_simple/goal`` once an ``odom`` has come, then answers each
+    ``odom`` with a twist, ``count`` times, as a goal follower without actionlib does; returns
+    the stamps of the odometry answered."""
+    cmd_vel = publisher("cmd_vel", Twist)
+    goal = publisher("move_base_simple/goal", PoseStamped)
+    seen = threading.Condition()
+    odometry: list[Odometry] = []
+    answered: list[float] = []
+    going = threading.Event()
+
+    def on_odom(message: Odometry) -> None:
+        with seen:
+            odometry.append(message)
+            if going.is_set() and len(answered) < count:
+                cmd_vel.publish(Twist())
+                answered.append(message.header.stamp.to_sec())
+            seen.notify_all()
+
+    rospy.Subscriber("odom", Odometry, on_odom, tcp_nodelay=True)
+    with seen:
+        if not seen.wait_for(lambda: odometry, TIMEOUT_S):
+            raise SystemExit("no odom came")
+    wait_for_connection(goal)
+    wait_for_connection(cmd_vel)
+    going.set()  # from here each odometry is answered; the one waiting was not
+    goal.publish(PoseStamped())
+    with seen:
+        if not seen.wait_for(lambda: len(answered) >= count, TIMEOUT_S):
+            raise SystemExit(f"answered {len(answered)} of {count}")
+    return {"answered": answered}
+
+
 def main() -> int:
     mode = sys.argv[1]
     rospy.init_node("ros_probe", anonymous=True, disable_signals=True)
@@ -329,6 +405,11 @@ def main() -> int:
                 result = drive_at_rate(
                     float(sys.argv[2]), json.load(handle), mode == "drive-sleeping"
                 )
+        elif mode == "drive-on-timer":
+            with open(sys.argv[3]) as handle:
+                result = drive_on_timer(float(sys.argv[2]), json.load(handle))
+        elif mode == "drive-after-goal":
+            result = drive_after_goal(int(sys.argv[2]))
         elif mode == "listen":
             recorder = Recorder(STATE_TOPICS)
             time.sleep(float(sys.argv[2]))

@@ -726,11 +726,13 @@ def test_the_bridges_bag_is_named_only_when_finished_and_refuses_a_folder(tmp_pa
     assert read_topics(str(path), ("/note",))["/note"] == ["one"]
 
 
-def rate_holds(period_s: float, count: int, step_ns: int = 32_000_000) -> list[int]:
+def rate_holds(
+    period_s: float, count: int, step_ns: int = 32_000_000, first_ns: int = 1
+) -> list[int]:
     """How many control steps each of ``count`` commands holds for a ``rospy.Rate`` made at the
-    reset state (stamped 1 ns): from the state it answers to the first at or after the rate's
-    next tick, 1 ns plus a multiple of the period."""
-    period_ns, now, holds = round(period_s * 1e9), 1, []
+    reset state (stamped 1 ns): from the state it answers (the first stamped ``first_ns``) to
+    the first at or after the rate's next tick, 1 ns plus a multiple of the period."""
+    period_ns, now, holds = round(period_s * 1e9), first_ns, []
     for _ in range(count):
         tick = 1 + ((now - 1) // period_ns + 1) * period_ns
         steps = 0
@@ -742,6 +744,33 @@ def rate_holds(period_s: float, count: int, step_ns: int = 32_000_000) -> list[i
 
 
 @needs_ros
+def test_a_goal_follower_gets_the_state_again_once_its_goal_came(master: LocalMaster) -> None:
+    # A goal follower without actionlib ignores odometry until a goal comes on
+    # move_base_simple/goal (rviz's 2D Nav Goal), then answers each odom. The reset state had
+    # gone by: it waited for that state sent again 5 s after it went out. The bridge notes the
+    # goal and, with no command 0.5 s later, publishes the state again.
+    spawn_bridge(master, "--seed", "2", "--duration", str(10 * 0.032))
+    seen = run_probe(master, "drive-after-goal", "10")
+    assert seen["answered"][0] < 1e-6  # the reset state, stamped 1 ns
+    assert seen["answered"][1:] == pytest.approx([step * 0.032 for step in range(1, 10)])
+    log = Path(master.log_path("bridge")).read_text()
+    assert "a goal came on /move_base_simple/goal and no command" in log
+
+
+def commands_on_sim_time(
+    master: LocalMaster, tmp_path: Path, seed: int, *bridge_options: str
+) -> tuple[list[dict[str, Any]], Path]:
+    """Sets ``/use_sim_time``, starts the bridge with noise seed ``seed`` and the options, and
+    writes 20 motor commands of that seed to a file; returns them and the file."""
+    master.set_param("/use_sim_time", True)
+    commands = motor_commands(20, seed=seed)
+    path = tmp_path / "commands.json"
+    path.write_text(json.dumps(commands))
+    spawn_bridge(master, "--seed", str(seed), *bridge_options)
+    return commands, path
+
+
+@needs_ros
 def test_a_controller_at_a_rospy_rate_drives_in_lockstep_with_command_period(
     master: LocalMaster, tmp_path: Path
 ) -> None:
@@ -749,11 +778,7 @@ def test_a_controller_at_a_rospy_rate_drives_in_lockstep_with_command_period(
     # for a tick that never came: time moved on commands only. With --command-period each
     # command holds until the clock reaches the rate's next tick (the ROS 2 bridge's rule):
     # the run is the in-process run holding each command over those steps, bit for bit.
-    master.set_param("/use_sim_time", True)
-    commands = motor_commands(20, seed=4)
-    path = tmp_path / "commands.json"
-    path.write_text(json.dumps(commands))
-    spawn_bridge(master, "--seed", "4", "--command-period", "0.1")
+    commands, path = commands_on_sim_time(master, tmp_path, 4, "--command-period", "0.1")
     seen = run_probe(master, "drive-at-rate", "0.1", str(path))
     holds = rate_holds(0.1, len(commands))
     assert holds[:3] == [4, 3, 3] and holds[7] == 4  # the tick at 0.8 s falls on a step
@@ -762,6 +787,31 @@ def test_a_controller_at_a_rospy_rate_drives_in_lockstep_with_command_period(
     assert len(seen["data"]["pose"]) == sum(holds) + 1
     assert seen["data"]["pose"] == expected["pose"]  # bit for bit
     assert seen["data"]["sensors"] == expected["sensors"]
+
+
+@needs_ros
+def test_a_controller_on_a_rospy_timer_drives_in_lockstep_with_command_period(
+    master: LocalMaster, tmp_path: Path
+) -> None:
+    # A controller whose commands go out from a rospy.Timer(rospy.Duration(0.1)) made in its
+    # constructor, on simulated time still at zero (its ticks at the multiples of 0.1 s, 1 ns
+    # before the bridge's): without --command-period it sent 1 command of 20 in lockstep and
+    # waited for a tick that never came; with it, the run is the in-process run holding each
+    # command until the timer's next tick, bit for bit.
+    commands, path = commands_on_sim_time(master, tmp_path, 6, "--command-period", "0.1")
+    # The clock runs on its own once the reset state, sent again, goes unanswered, and waits at
+    # the timer's first tick (0.128 s, 4 steps standing still) for its command.
+    holds = rate_holds(0.1, len(commands), first_ns=4 * 32_000_000)
+    assert holds[:3] == [3, 3, 3]
+    seen = run_probe(master, "drive-on-timer", "0.1", str(path), str(sum(holds) + 1))
+    held = [command for command, steps in zip(commands, holds) for _ in range(steps)]
+    expected = replay("e-puck", 6, held)
+    poses, sensors = seen["data"]["pose"], seen["data"]["sensors"]
+    again = len(poses) - len(expected["pose"])  # the reset state sent again
+    assert again >= 1
+    assert poses == expected["pose"][:1] * again + expected["pose"]  # bit for bit
+    assert sensors == expected["sensors"][:1] * again + expected["sensors"]
+    assert seen["clock"][-1] == pytest.approx((4 + sum(holds)) * 0.032)
 
 
 @needs_ros

@@ -229,9 +229,32 @@ def test_a_node_waiting_for_odom_before_its_command_writer_gets_the_reset_state(
     assert "stopped after 5 steps" in result.stderr
 
 
+#: The end of a node's script: answers each /odom with one command until it has answered
+#: ANSWERS; prints the stamps of the first and last odometry answered.
+_ANSWER_ODOM_UNTIL = """
+stamps = []
+while len(stamps) < ANSWERS and time.monotonic() < deadline:
+    for data in odom.take():
+        stamps.append(cdr.decode_clock(data))
+        cmd_vel.publish(twist)
+    time.sleep(0.002)
+cmd_vel.dds.wait_for_acks(120 * 10**9)  # the last command reaches the bridge before this ends
+print(f"answered:{stamps[0]}..{stamps[-1]}" if stamps else "answered:nothing")
+"""
+#: The same after a first command.
+_SEND_AND_ANSWER_ODOM = (
+    """
+twist = cdr.encode_twist((0.05, 0.0, 0.0), (0.0, 0.0, 0.3))
+cmd_vel.publish(twist)
+"""
+    + _ANSWER_ODOM_UNTIL
+)
+
+
 #: Waits for one /odom on a reader of its own (depth 1), then creates its /cmd_vel writer and
 #: an /odom reader, sends a first command once the writer matches and answers each /odom.
-_WAIT_FOR_ODOM = """
+_WAIT_FOR_ODOM = (
+    """
 import time
 from mazesim.ros2 import cdr
 from mazesim.ros2.node import Node
@@ -248,17 +271,105 @@ odom = node.reader("/odom", "nav_msgs/msg/Odometry", TopicQos(True, False, 10))
 cmd_vel = node.writer("/cmd_vel", "geometry_msgs/msg/Twist", COMMAND)
 while not cmd_vel.subscribers() and time.monotonic() < deadline:
     time.sleep(0.005)
-twist = cdr.encode_twist((0.05, 0.0, 0.0), (0.0, 0.0, 0.3))
-cmd_vel.publish(twist)
-stamps = []
-while len(stamps) < 4 and time.monotonic() < deadline:
-    for data in odom.take():
-        stamps.append(cdr.decode_clock(data))
-        cmd_vel.publish(twist)
-    time.sleep(0.002)
-cmd_vel.dds.wait_for_acks(120 * 10**9)  # the last command reaches the bridge before this ends
-print(f"answered:{stamps[0]}..{stamps[-1]}" if stamps else "answered:nothing")
+ANSWERS = 4
 """
+    + _SEND_AND_ANSWER_ODOM
+)
+
+
+def test_a_reader_made_before_the_first_command_gets_the_reset_state_at_once() -> None:
+    # A node whose cmd_vel writer and /pose reader matched first (the reset state goes out to
+    # them), then waits for one /odom on a new reader (rclpy.wait_for_message) before its first
+    # command: a volatile reader gets nothing sent before it matched. It waited for the reset
+    # state sent again after 5 s; it now gets it once the grace period has passed, as after a
+    # reset call.
+    node = [sys.executable, "-c", _WAIT_FOR_ODOM_AFTER_THE_RESET_STATE]
+    result = run_in_namespace([_bridge("humble", 3)], node)
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.split() == ["reset-pose:1", "odom:1", "answered:32000000..64000000"]
+    assert "state reader matched after the last state went out" in result.stderr
+    assert "no command 5 s after the reset state" not in result.stderr
+    assert "stopped after 3 steps" in result.stderr
+
+
+#: Makes its /cmd_vel writer and a /pose reader, takes the reset state's /pose, then waits for
+#: one /odom on a reader made only then, and answers each /odom from there.
+_WAIT_FOR_ODOM_AFTER_THE_RESET_STATE = (
+    """
+import time
+from mazesim.ros2 import cdr
+from mazesim.ros2.node import Node
+from mazesim.ros2.qos import COMMAND, TopicQos
+node = Node("waits_for_odom_late")
+pose = node.reader("/pose", "std_msgs/msg/Float64MultiArray", TopicQos(True, False, 10))
+cmd_vel = node.writer("/cmd_vel", "geometry_msgs/msg/Twist", COMMAND)
+deadline = time.monotonic() + 120  # a ceiling for a hang: each wait ends on what it waits for
+found = []
+while not found and time.monotonic() < deadline:
+    found = pose.take(1)
+    time.sleep(0.005)
+values = cdr.decode_float64_array(found[0])
+print(f"reset-pose:{round(values[3] * 1e9) or 1}", flush=True)
+odom = node.reader("/odom", "nav_msgs/msg/Odometry", TopicQos(True, False, 10))
+found = []
+while not found and time.monotonic() < deadline:
+    found = odom.take(1)
+    time.sleep(0.005)
+print(f"odom:{cdr.decode_clock(found[0])}", flush=True)
+ANSWERS = 2
+"""
+    + _SEND_AND_ANSWER_ODOM
+)
+
+
+def test_a_navigator_given_a_goal_after_the_reset_state_gets_that_state_again() -> None:
+    # A navigator that answers /odom only once a goal has come on /goal_pose (rviz2's 2D Goal
+    # Pose, here a second after the reset state reached it) let the reset state go by and
+    # waited for it sent again after 5 s; the bridge notes the goal and sends it 0.5 s later.
+    node = [sys.executable, "-c", _DRIVE_ONCE_A_GOAL_CAME]
+    result = run_in_namespace([_bridge("humble", 3)], node)
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.split() == ["reset-pose:1", "answered:1..64000000"]
+    assert "or a goal came on /goal_pose" in result.stderr
+    assert "no command 5 s after the reset state" not in result.stderr
+    assert "stopped after 3 steps" in result.stderr
+
+
+#: Takes the reset state's /pose, sends a goal on /goal_pose a second later (as a PoseStamped:
+#: its CDR written by rosbags), then answers each /odom from there.
+_DRIVE_ONCE_A_GOAL_CAME = (
+    """
+import time
+from rosbags.typesys import Stores, get_typestore
+from mazesim.ros2 import cdr
+from mazesim.ros2.node import Node
+from mazesim.ros2.qos import COMMAND, TopicQos
+node = Node("navigator")
+pose = node.reader("/pose", "std_msgs/msg/Float64MultiArray", TopicQos(True, False, 10))
+odom = node.reader("/odom", "nav_msgs/msg/Odometry", TopicQos(True, False, 10))
+cmd_vel = node.writer("/cmd_vel", "geometry_msgs/msg/Twist", COMMAND)
+goal = node.writer("/goal_pose", "geometry_msgs/msg/PoseStamped", TopicQos(True, False, 10))
+deadline = time.monotonic() + 120  # a ceiling for a hang: each wait ends on what it waits for
+found = []
+while not found and time.monotonic() < deadline:
+    found = pose.take(1)
+    time.sleep(0.005)
+print(f"reset-pose:{round(cdr.decode_float64_array(found[0])[3] * 1e9) or 1}", flush=True)
+time.sleep(1.0)  # the user clicks a second after the robot appeared
+odom.take()  # the states before the goal go by unanswered
+store = get_typestore(Stores.ROS2_HUMBLE)
+kind = store.types["geometry_msgs/msg/PoseStamped"]
+goal.publish(bytes(store.serialize_cdr(kind(header=store.types["std_msgs/msg/Header"](
+    stamp=store.types["builtin_interfaces/msg/Time"](sec=0, nanosec=0), frame_id="map"),
+    pose=store.types["geometry_msgs/msg/Pose"](
+        position=store.types["geometry_msgs/msg/Point"](x=0.3, y=0.125, z=0.0),
+        orientation=store.types["geometry_msgs/msg/Quaternion"](x=0.0, y=0.0, z=0.0, w=1.0))),
+    "geometry_msgs/msg/PoseStamped")))
+twist = cdr.encode_twist((0.05, 0.0, 0.0), (0.0, 0.0, 0.3))
+ANSWERS = 3
+"""
+    + _ANSWER_ODOM_UNTIL
+)
 
 
 #: Answers each /odom with one /cmd_vel, as many times as its first argument says, in the

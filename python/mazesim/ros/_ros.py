@@ -106,8 +106,8 @@ def require_ros() -> Any:
     Returns:
         A namespace with ``rospy``, ``rosgraph``, ``Float64MultiArray``, ``MultiArrayDimension``,
         ``String``, ``Clock`` and the standard messages ``Range``, ``LaserScan``, ``Odometry``,
-        ``Twist``, ``TransformStamped`` and ``TFMessage``, and the service ``Empty`` (``std_srvs``)
-        with ``EmptyResponse``.
+        ``Twist``, ``TransformStamped``, ``TFMessage`` and ``PoseStamped``, and the service
+        ``Empty`` (``std_srvs``) with ``EmptyResponse``.
 
     Raises:
         MissingDependencyError: ROS 1's Python packages cannot be imported.
@@ -115,7 +115,7 @@ def require_ros() -> Any:
     try:
         import rosgraph
         import rospy
-        from geometry_msgs.msg import TransformStamped, Twist
+        from geometry_msgs.msg import PoseStamped, TransformStamped, Twist
         from nav_msgs.msg import Odometry
         from rosgraph_msgs.msg import Clock
         from sensor_msgs.msg import LaserScan, Range
@@ -140,6 +140,7 @@ def require_ros() -> Any:
         Twist=Twist,
         TransformStamped=TransformStamped,
         TFMessage=TFMessage,
+        PoseStamped=PoseStamped,
         Empty=Empty,
         EmptyResponse=EmptyResponse,
     )

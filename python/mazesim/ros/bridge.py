@@ -97,6 +97,11 @@ MODES = ("lockstep", "realtime")
 IDLE_WARNING_S = 5.0
 #: How many control steps a real-time bridge may fall behind before it stops catching up.
 MAX_LAG_STEPS = 5
+#: Where rviz's "2D Nav Goal" sends a goal (``move_base``'s simple goal topic): the bridge only
+#: notes that one came (see :meth:`Bridge.answer_goal`).
+GOAL_TOPIC = "move_base_simple/goal"
+#: Lockstep: seconds after a goal came, no command come, before the state goes out again.
+GOAL_GRACE_S = 0.5
 
 
 @dataclass
@@ -239,6 +244,9 @@ class Bridge:
         )
         #: The last state as it went out: each publisher with its message.
         self.last_state: list[tuple[Any, Any]] = []
+        #: Lockstep: when the last goal came and how many commands the bridge had taken then.
+        self._goal_since: tuple[float, int] | None = None
+        self._goals_answered = 0
         self.bag = BagWriter(ros, settings.bag) if settings.bag else None
         self._sending_again = False
         self._sensors_layout = self._layout(topics.sensor_names(simulator))
@@ -266,6 +274,7 @@ class Bridge:
             rospy.Subscriber(topics.ACTION_TOPIC, ros.String, self.on_action, tcp_nodelay=True),
             rospy.Subscriber(standard.CMD_VEL_TOPIC, ros.Twist, self.on_cmd_vel, tcp_nodelay=True),
         ]
+        self.goal_subscriber = rospy.Subscriber(GOAL_TOPIC, ros.PoseStamped, self.on_goal)
         #: ``/gazebo/reset_simulation`` and ``/gazebo/reset_world`` (``std_srvs/Empty``), as
         #: Gazebo's node offers them, and Stage's ``/reset_positions`` (:mod:`mazesim.ros.resets`).
         self.resets = EpisodeResets(simulator)
@@ -361,9 +370,17 @@ class Bridge:
                     "start; one that commands at a rospy.Rate slower than the control step: "
                     "run the bridge with --command-period, the rate's period)"
                 )
+            if self.idle_steps == 0:
+                self.hold.start(self._stamp())  # the first tick of a timer on command_period
             self.idle_steps += 1
             self.clock_publisher.publish(self.ros.Clock(clock=self._clock_time()))
             self.idle_tick_at += self.simulator.control_step_ms / 1000.0
+            if self.hold.active and not self.hold.holds(self._stamp()):
+                # At the controller's tick: its timer fires now (rospy.Timer made in its
+                # constructor); the clock waits there for its command before it goes on, so
+                # the command comes at this stamp whatever the load, and the run is the same.
+                self.idle_tick_at += IDLE_CLOCK_AFTER_S
+                self.hold.start(self._stamp())
             return max(self.idle_tick_at - time.monotonic(), 0.0)
 
     def _finished(self) -> bool:
@@ -419,6 +436,49 @@ class Bridge:
         self._command_from(
             "action", message, lambda: wheel_speeds(message.data, self.max_wheel_speed)
         )
+
+    def on_goal(self, message: Any) -> None:
+        """Notes that a goal came on ``move_base_simple/goal`` (see :meth:`answer_goal`)."""
+        with self._lock:
+            self._goal_since = (time.monotonic(), self.commands)
+
+    def answer_goal(self) -> None:
+        """Lockstep: when a goal came on ``move_base_simple/goal`` (rviz's "2D Nav Goal") and no
+        command has come ``GOAL_GRACE_S`` later, publishes the state again, as the ROS 2 bridge
+        does after a goal on ``/goal_pose``: a node that drives only once it has a goal ignored
+        the states before it and waits for the next, and the bridge for its command (it waited
+        for the state sent again after ``RESEND_S``). Before the first command the reset state
+        at the current stamp, once stepping the last state as it went out; a node that answers
+        at once gets nothing twice. Logs it the first time."""
+        with self._lock:
+            if self._goal_since is None or self.stop.is_set():
+                return
+            since, commands = self._goal_since
+            if self.commands != commands:
+                self._goal_since = None
+                return
+            if time.monotonic() - since < GOAL_GRACE_S:
+                return
+            self._goal_since = None
+            self._goals_answered += 1
+            if self._goals_answered == 1:
+                self.ros.rospy.logwarn(
+                    "lockstep: a goal came on %s and no command in %g s; publishing the state "
+                    "again (step %d), for a node that drives once it has a goal",
+                    self.goal_subscriber.resolved_name,
+                    GOAL_GRACE_S,
+                    self.simulator.steps,
+                )
+            if self.commands:
+                for made, message in list(self.last_state):
+                    made.publish(message)
+            else:
+                self._sending_again = True  # the bag holds each state once
+                try:
+                    self.publish_state()
+                finally:
+                    self._sending_again = False
+            self.unanswered.went_out(time.monotonic())
 
     def on_cmd_vel(self, message: Any) -> None:
         """Handles a ``cmd_vel`` twist: ``linear.x`` in m/s, ``angular.z`` in rad/s."""
@@ -557,6 +617,7 @@ class Bridge:
                     )
                     started = math.inf
                 self._resend_unanswered()
+                self.answer_goal()
                 wait = min(self.tick_idle_clock(), self.step_on_deadline())
             return
         period = self.simulator.control_step_ms / 1000.0 / self.settings.speed

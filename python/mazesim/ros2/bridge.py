@@ -2,18 +2,22 @@
 
 Lockstep (the default): each command on ``/cmd_vel`` (read as Twist and as TwistStamped, whatever
 the distribution), ``/motor`` or ``/action`` advances one
-control step, then the state topics go out stamped with the new simulation time, ``/clock`` last.
-Before the first command the bridge publishes the reset state once (stamped 1 ns), after a writer
+control step, then the state topics go out stamped with the new simulation time: ``/tf``, the
+motion, the sensors, ``/clock`` last (:attr:`~mazesim.ros2.state.StateTopics.order`).
+Before the first command the bridge publishes the reset state once (stamped 1 ns; its sensors and
+``/clock`` ``MOTION_LEAD_S`` after its motion), after a writer
 on one of its command topics or a reader of a state topic has matched and a grace period has
 passed, and again every
 ``RESEND_S`` seconds while a command writer is matched and no command has come (a node that
 answers only its second message, or whose first command went out before it matched, gets
 another), saying so on stderr; when that goes unanswered too, ``/clock`` runs on its own until
 the first command, the simulator standing still, for a node that waits for simulated time first.
-Once stepping, a command writer that matches later (a node started or restarted while the bridge
-runs) and sends nothing within the grace period gets its robot's last state again, byte for
-byte, and so does every robot the world waits for when no command has come for ``RESEND_S``
-seconds (a node that let a state go unanswered). Free-running: the bridge
+Once the reset state has gone out, a command writer or state reader that matches later (a node
+started or restarted while the bridge runs, a ``wait_for_message`` reader made before the first
+command), or a goal on ``/goal_pose`` (a navigator that drives once it has one), with no
+command within the grace period gets its robot's last state again (byte for byte once
+stepping), and so does every robot the world waits for when no command has come for
+``RESEND_S`` seconds (a node that let a state go unanswered). Free-running: the bridge
 steps on its own at ``speed`` (see :mod:`mazesim.ros2.clock`), with the last commanded wheel
 speeds. Topics and QoS: :mod:`mazesim.ros2.state`; the page ``docs/ros2.md``.
 
@@ -59,10 +63,10 @@ from mazesim.ros2.clock import SIM_CONTROL_TOPIC, FreeRunning, stamp_nanoseconds
 from mazesim.ros2.node import Node, Reader
 from mazesim.ros2.nodes import leaves_signals_as_found
 from mazesim.ros2.occupancy import map_topics, occupancy_grid
-from mazesim.ros2.qos import CLOCK, COMMAND, TF_STATIC, IncompatibleQos
+from mazesim.ros2.qos import CLOCK, COMMAND, TF_STATIC, IncompatibleQos, TopicQos
 from mazesim.ros2.robots import RobotOf, robot_namespaces
 from mazesim.ros2.ros_args import RosArguments
-from mazesim.ros2.state import CLOCK_TOPIC, CLOCK_TYPE, TF_MESSAGE, StateTopics
+from mazesim.ros2.state import CLOCK_TOPIC, CLOCK_TYPE, StateTopics
 from mazesim.ros2.unpublished import UnpublishedTopics
 
 __all__ = ["IDLE_CLOCK_AFTER_S", "RESEND_S", "BridgeSettings", "Ros2Bridge", "run_bridge"]
@@ -73,12 +77,20 @@ READY_GRACE_S = 0.5
 #: Seconds between two looks at the readers other nodes created (see :mod:`.unpublished`).
 READERS_CHECK_S = 1.0
 _ROS_NAMESPACE = re.compile(r"/?[A-Za-z_][A-Za-z0-9_]*(/[A-Za-z_][A-Za-z0-9_]*)*")
+#: Lockstep: seconds between the first state's transforms and motion and its sensor messages.
+MOTION_LEAD_S = 0.25
 #: Lockstep: seconds between two looks for command writers that matched late.
 NEWCOMERS_CHECK_S = 0.1
 TWIST = "geometry_msgs/msg/Twist"
 TWIST_STAMPED = "geometry_msgs/msg/TwistStamped"
 STRING = "std_msgs/msg/String"
 FLOAT64_ARRAY = "std_msgs/msg/Float64MultiArray"
+POSE_STAMPED = "geometry_msgs/msg/PoseStamped"
+#: Where rviz2's "2D Goal Pose" tool (and Nav2's simple commander) sends a goal: the bridge only
+#: notes that one came (see :meth:`Ros2Bridge._greet_newcomers`). Best effort, so that writers
+#: of either reliability match.
+GOAL_TOPIC = "goal_pose"
+GOAL_QOS = TopicQos(reliable=False, transient_local=False, depth=10)
 OCCUPANCY_GRID = "nav_msgs/msg/OccupancyGrid"
 
 
@@ -189,6 +201,8 @@ class RobotChannel:
         ]
         self.motor = node.reader(f"{ns}/{topics.MOTOR_TOPIC}", FLOAT64_ARRAY, COMMAND)
         self.action = node.reader(f"{ns}/{topics.ACTION_TOPIC}", STRING, COMMAND)
+        #: Goals sent to the robot's navigator: read only to note that one came.
+        self.goal = node.reader(f"{ns}/{GOAL_TOPIC}", POSE_STAMPED, GOAL_QOS)
         self.pending: deque[tuple[float, float]] = deque()
         self.wheel_speeds = (0.0, 0.0)
         self.held = topics.HeldCommand()
@@ -376,6 +390,13 @@ class Ros2Bridge:
         self.rejected_controls = 0
         #: Reset calls answered so far.
         self.resets_served = 0
+        #: Lockstep: the reset state has gone out (from then on a node that matches late gets
+        #: its robot's state again, see :meth:`_greet_newcomers`).
+        self.reset_state_out = False
+        #: Lockstep: the first state's sensor messages and ``/clock``, while they wait for
+        #: :data:`MOTION_LEAD_S` after its motion (see :meth:`_publish_first_state`), and when.
+        self._first_rest: list[tuple[Any, bytes]] = []
+        self._first_rest_at = math.inf
         #: Lockstep: when a state that went unanswered goes out again.
         self.unanswered = UnansweredState()
         #: Lockstep: control steps ``/clock`` ran on its own before the first command; every
@@ -436,19 +457,57 @@ class Ros2Bridge:
             data = robot.state.static_transforms(cdr.stamp_of(nanoseconds))
             self._send(robot.static_writer, nanoseconds, data)
 
-    def publish_state(self, step_seconds: float) -> None:
-        """Publishes every state topic for the current step, ``/clock`` last."""
+    def publish_state(self, step_seconds: float, first: bool = False) -> None:
+        """Publishes every state topic for the current step, ``/clock`` last; with ``first``,
+        the transforms and motion only, keeping the rest for :meth:`_finish_first_state`."""
+        if not first:
+            self._finish_first_state()
         nanoseconds = self.stamp()
-        stamp = cdr.stamp_of(nanoseconds)
         for robot in self.robots:
-            state = zip(robot.writers, robot.state.messages(stamp, step_seconds))
-            # /tf first: a node that looks up the pose at a sensor message's stamp (tf2's
-            # lookup_transform in its /scan callback) has that step's transform already.
-            robot.last_state = sorted(state, key=lambda sent: sent[0].msgtype != TF_MESSAGE)
-            for writer, data in robot.last_state:
-                self._send(writer, nanoseconds, data)
+            self._publish_robot_state(robot, step_seconds, first)
         if self.clock_writer is not None:
-            self._send(self.clock_writer, nanoseconds, cdr.encode_clock(stamp))
+            clock = (self.clock_writer, cdr.encode_clock(cdr.stamp_of(nanoseconds)))
+            if first:
+                self._first_rest.append(clock)
+            else:
+                self._send(clock[0], nanoseconds, clock[1])
+
+    def _publish_robot_state(
+        self, robot: RobotChannel, step_seconds: float, first: bool = False
+    ) -> None:
+        """Publishes one robot's state topics for the current step in the state's order
+        (:attr:`~mazesim.ros2.state.StateTopics.order`: ``/tf`` first, then the odometry, then
+        the sensors, so a node that answers a sensor message with the latest pose has that
+        step's), and keeps them as they went out; with ``first``, the transforms and motion
+        only, the rest kept for :meth:`_finish_first_state`."""
+        nanoseconds = self.stamp()
+        messages = robot.state.messages(cdr.stamp_of(nanoseconds), step_seconds)
+        robot.last_state = [(robot.writers[at], messages[at]) for at in robot.state.order]
+        now = robot.state.motion_count if first else len(robot.last_state)
+        for writer, data in robot.last_state[:now]:
+            self._send(writer, nanoseconds, data)
+        self._first_rest += robot.last_state[now:]
+
+    def _publish_first_state(self) -> None:
+        """Lockstep: publishes the reset state in two parts, ``/tf`` and the motion
+        (``/odom``, ``/joint_states``, ``/imu``, ``/pose``) first and the sensor messages and
+        ``/clock`` :data:`MOTION_LEAD_S` later (or before the first step, if a command comes
+        sooner). A node that answers a sensor message with the latest odometry (a Bug planner's
+        ``/scan`` callback that skips until an ``/odom`` has come) has the reset state's odometry
+        whatever order its executor serves the two subscriptions in once both are ready (rclpy
+        and rclcpp serve them in the order they were made), and answers the reset state; after
+        it every state finds the one before in the node's caches."""
+        self.publish_state(0.0, first=True)
+        self._first_rest_at = time.monotonic() + MOTION_LEAD_S
+
+    def _finish_first_state(self) -> None:
+        """Sends the first state's sensor messages and ``/clock`` if they still wait."""
+        rest, self._first_rest, self._first_rest_at = self._first_rest, [], math.inf
+        nanoseconds = self.stamp()
+        for writer, data in rest:
+            self._send(writer, nanoseconds, data)
+        if rest:
+            self.unanswered.went_out(time.monotonic())
 
     def _note_goal(self) -> None:
         if self.goal is not None and self.goal_step is None:
@@ -470,6 +529,7 @@ class Ros2Bridge:
 
     def step_robots(self) -> None:
         """One control step with each robot's wheel speeds, then the state topics."""
+        self._finish_first_state()
         if len(self.robots) == 1:
             self.simulator.step(*self.robots[0].wheel_speeds)
         else:
@@ -569,17 +629,20 @@ class Ros2Bridge:
         if self.settings.mode == "lockstep":
             self.wait_for_driver()
             if not self.stop.is_set():
-                self.publish_state(0.0)
+                self._note_matched()  # the nodes matched now get the reset state: not late
+                self._publish_first_state()
+                self.reset_state_out = True
                 self.unanswered.went_out(time.monotonic())
                 if self.hold.active:  # at rest, no command yet, until the node's first tick
                     self.hold.start(self.stamp())
                     while self.hold.holds(self.stamp()) and not self.stop.is_set():
                         self.step_robots()
-            self._greet_newcomers()  # the writers matched now are the first drivers, not late
             while not self.stop.is_set():
                 now = time.monotonic()
                 wait = min(0.1, max(self._idle_tick_at - now, 0.0), self.deadline.wait(now))
                 self._waitset.wait(int(wait * 1e9))
+                if time.monotonic() >= self._first_rest_at:
+                    self._finish_first_state()
                 self._step_pending()
                 self._step_on_deadline()
                 self._serve_resets()
@@ -605,9 +668,7 @@ class Ros2Bridge:
             return
         stepped = self.simulator.steps > 0
         pending = any(robot.pending for robot in self.robots)
-        if (pending and not stepped) or (
-            stepped and any(robot.newcomer_since for robot in self.robots)
-        ):
+        if (pending and not stepped) or any(robot.newcomer_since for robot in self.robots):
             return  # a node that came late gets the state from _greet_newcomers, once
         robots = [robot for robot in self.robots if robot.driven() and not robot.pending]
         if not robots:
@@ -673,16 +734,27 @@ class Ros2Bridge:
         self._send(clock, nanoseconds, cdr.encode_clock(cdr.stamp_of(nanoseconds)))
         self._idle_tick_at += self.simulator.control_step_ms / 1000.0
 
+    def _note_matched(self) -> None:
+        """Notes the command writers and state readers matched now as known (not late)."""
+        for robot in self.robots:
+            robot.known_writers, robot.known_readers = (
+                robot.command_writers(),
+                robot.state_readers(),
+            )
+
     def _greet_newcomers(self) -> None:
-        """Lockstep, once stepping or after a reset: a node that starts writing a robot's
-        commands after the robot's last state went out (started, or restarted, while the bridge
-        runs), or makes a new reader of its state (``rclpy.wait_for_message`` after a reset
-        call or between two commands: a volatile reader receives nothing sent before it
-        matched), waits for a state, and the bridge for its command. When a command writer or a
-        state reader matches that was not matched before, and the robot has received no command
+        """Lockstep, once the reset state has gone out (before the first command as after it,
+        and after a reset): a node that starts writing a robot's commands after the robot's
+        last state went out (started, or restarted, while the bridge runs), makes a new reader
+        of its state (``rclpy.wait_for_message`` before its first command, after a reset call
+        or between two commands: a volatile reader receives nothing sent before it matched), or
+        drives only once it has a goal (one came on ``/goal_pose``), waits for a state, and the
+        bridge for its command. When a command writer or a state reader matches that was not
+        matched before, or a goal comes, and the robot has received no command
         ``READY_GRACE_S`` later, the robot's last state goes out again as it went out (same
-        stamp; ``/clock`` too in a world of one robot); a node that answers at once gets nothing
-        twice. Says so on stderr."""
+        stamp; ``/clock`` too in a world of one robot; before the first step the reset state,
+        made again at the current stamp); a node that answers at once gets nothing twice. Says
+        so on stderr."""
         now = time.monotonic()
         if now - self._newcomers_checked < NEWCOMERS_CHECK_S:
             return  # a look costs a DDS query per command topic: not at every lockstep step
@@ -690,7 +762,9 @@ class Ros2Bridge:
         for robot in self.robots:
             writers, readers = robot.command_writers(), robot.state_readers()
             came = writers - robot.known_writers or readers - robot.known_readers
-            if came and (self.simulator.steps > 0 or self.resets_served):
+            if robot.goal.take():  # a node that drives once it has a goal waits for a state
+                came = True
+            if came and self.reset_state_out:
                 robot.newcomer_since = (now, robot.received)
             robot.known_writers, robot.known_readers = writers, readers
             if robot.newcomer_since is None:
@@ -703,15 +777,23 @@ class Ros2Bridge:
                 self._send_last_state(robot)
 
     def _send_last_state(self, robot: RobotChannel) -> None:
+        """Sends the robot's last state again; before the first step the reset state, made
+        again at the current stamp (``/clock`` may have run on its own since it went out, and
+        must not go back)."""
         self.unanswered.went_out(time.monotonic())
-        nanoseconds = self.stamp()
-        for writer, data in robot.last_state:
-            self._send(writer, nanoseconds, data)
+        if self.simulator.steps == 0:
+            self._publish_robot_state(robot, 0.0)
+        else:
+            nanoseconds = self.stamp()
+            for writer, data in robot.last_state:
+                self._send(writer, nanoseconds, data)
         topic = f"{robot.state.namespace}/{standard.CMD_VEL_TOPIC}"
         self._say(
             f"lockstep: a command writer or state reader matched after the last state went out "
-            f"(e.g. on {topic}: a node started or restarted while the bridge runs, or one "
-            f"waiting for a message after a reset) and no command came in {READY_GRACE_S:g} s; "
+            f"(e.g. on {topic}: a node started or restarted while the bridge runs, or one waiting "
+            f"for a message after the reset state or a reset call), or a goal came on "
+            f"{robot.goal.topic} (a navigator that drives once it has one), and no command came "
+            f"in {READY_GRACE_S:g} s; "
             f"publishing that state again (step {self.simulator.steps})"
         )
 

@@ -76,6 +76,17 @@ class Topic(NamedTuple):
     qos: TopicQos
 
 
+def _sent_rank(topic: Topic) -> int:
+    """Where a state topic's message goes out in a step (see :attr:`StateTopics.order`)."""
+    if topic.msgtype == TF_MESSAGE:
+        return 0
+    if topic.msgtype in (ODOMETRY, JOINT_STATE, IMU) or topic.name.endswith(
+        "/" + topics.POSE_TOPIC
+    ):
+        return 1
+    return 3 if topic.msgtype == CLOCK_TYPE else 2
+
+
 def _ground_tables(robot: RobotProfile) -> list[list[tuple[float, float]]]:
     """Each ground sensor's table rows ``(distance, reading)``, from the profile."""
     profile = load_toml(robot.to_toml(), f"the {robot.name} profile")
@@ -170,6 +181,16 @@ class StateTopics:
         self.topics.append(Topic(f"{ns}/{topics.POSE_TOPIC}", FLOAT64_ARRAY, SENSOR))
         if clock:
             self.topics.append(Topic(CLOCK_TOPIC, CLOCK_TYPE, CLOCK))
+        #: The order in which a step's messages go out (indices into :attr:`topics`): ``/tf``,
+        #: then the robot's motion (``/odom``, ``/joint_states``, ``/imu``, ``/pose``), then what
+        #: its sensors read, ``/clock`` last. A node that answers a sensor message with the
+        #: latest odometry or transform (a Bug planner's ``/scan`` callback that skips until an
+        #: ``/odom`` has come, tf2's lookup at the scan's stamp) has that step's already, the
+        #: reset state's included.
+        self.order = sorted(range(len(self.topics)), key=lambda at: _sent_rank(self.topics[at]))
+        #: How many of :attr:`order` are the transforms and the motion (the rest: the sensors and
+        #: ``/clock``); a lockstep bridge sends its first state in these two parts.
+        self.motion_count = sum(_sent_rank(topic) < 2 for topic in self.topics)
 
     def _start_imu_noise(self) -> None:
         """Starts ``/imu``'s noise stream (None: noise-free) from its seed, no draws made."""
