@@ -236,7 +236,9 @@ class ActionConverter:
         return fractions * self.max_speed
 
 
-def action_array(actions: Any, what: str = "actions") -> npt.NDArray[Any]:
+def action_array(
+    actions: Any, what: str = "actions", kind: str = "real numbers (float32)"
+) -> npt.NDArray[Any]:
     """``actions`` as a numpy array: the one reader of the actions of every env, the
     multi-robot ones too. A masked array is refused (``np.asarray`` would drop its mask and read
     the masked entries as the numbers under them, as the core's buffers refuse it), and so is
@@ -249,19 +251,22 @@ def action_array(actions: Any, what: str = "actions") -> npt.NDArray[Any]:
     """
     if isinstance(actions, np.ma.MaskedArray):
         raise InvalidActionError(
-            f"expected {what} as a plain array, found a numpy masked array (its mask would be "
-            "dropped): pass array.filled(value) with the value masked entries should take"
+            f"expected {what} to be {kind} in a plain array, found a numpy masked array (its "
+            "mask would be dropped): pass array.filled(value) with the value masked entries "
+            "should take"
         )
     try:
         return np.asarray(actions)
     except (TypeError, ValueError, OverflowError, RecursionError) as error:
         raise InvalidActionError(
-            f"expected {what} as an array of numbers, found {_a_type(actions)} numpy cannot "
-            f"read: {_shown(str(error))}"
+            f"expected {what} to be {kind}, found {_a_type(actions)} numpy cannot read: "
+            f"{_shown(str(error))}"
         ) from None
 
 
-def real_actions(actions: Any, what: str = "actions") -> npt.NDArray[np.float32]:
+def real_actions(
+    actions: Any, what: str = "actions", kind: str = "real numbers (float32)"
+) -> npt.NDArray[np.float32]:
     """``actions`` (:func:`action_array`) as a new C-ordered, native float32 array, refusing an
     array of anything but real numbers (objects, text, complex numbers, booleans): numpy would
     read the text ``"0.5"`` as a number, and drop a complex number's imaginary part with a
@@ -270,10 +275,10 @@ def real_actions(actions: Any, what: str = "actions") -> npt.NDArray[np.float32]
     Raises:
         InvalidActionError: As :func:`action_array`, or an array of no real numbers.
     """
-    array = action_array(actions, what)
+    array = action_array(actions, what, kind)
     if array.dtype.kind not in "fiu":
         raise InvalidActionError(
-            f"expected {what} as real numbers (float32), found an array of dtype {array.dtype}"
+            f"expected {what} to be {kind}, found an array of dtype {array.dtype}"
         )
     return np.array(array, dtype=np.float32, order="C")
 

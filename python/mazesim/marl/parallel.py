@@ -152,7 +152,9 @@ class MultiRobotParallelEnv(ParallelEnv[str, Observation, npt.NDArray[np.float32
         wheels = np.zeros((1, len(self.possible_agents), 2), np.float32)
         for i, agent in enumerate(self.possible_agents):
             if agent in self.agents:
-                action = real_actions(actions[agent], f"the action of {agent}")
+                action = real_actions(
+                    actions[agent], f"the action of {agent}", "two wheel speeds (numbers)"
+                )
                 if action.shape != (2,):
                     raise InvalidActionError(
                         f"expected the action of {agent} of shape (2,), found {action.shape}"
