@@ -32,8 +32,9 @@ TASK_FEATURES = (
     np.full(26, 2.0, np.float32),
 )
 
-#: Private entry points kept for tests of the panic guard.
-PRIVATE = {"_panic_for_tests"}
+#: Private entry points: kept for tests of the panic guard, and the atomic writer's bookkeeping
+#: of its writes in progress (called by ``mazesim._atomic`` alone, with a file name it made).
+PRIVATE = {"_panic_for_tests", "_temporary_writing"}
 
 
 class WrongType:

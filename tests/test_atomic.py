@@ -12,9 +12,11 @@ import threading
 import time
 import types
 from pathlib import Path
+from typing import Any
 
 import pytest
 
+import mazesim
 from mazesim import _atomic
 from mazesim._atomic import atomic_file, remove_stale_temporaries, temporary_name
 from mazesim.errors import MazesimIOError
@@ -82,6 +84,25 @@ def test_orphaned_temporaries_of_the_target_are_removed_and_nothing_else(tmp_pat
         assert not path.exists(), path
     for path in (live, fresh_old_style, *others):
         assert path.exists(), path
+
+
+def test_the_older_cores_temporaries_go_by_their_pid_from_either_writer(tmp_path: Path) -> None:
+    """The core once named its temporaries ``.NAME.tmp-<pid>-<count>``: a dead writer's go on
+    the next write of the target, by the Python writer or the core's, a running one's stay."""
+    for name in ("tables.npz", "maze.toml"):
+        target = tmp_path / name
+        dead = tmp_path / f".{name}.tmp-{_dead_pid()}-7"
+        live = tmp_path / f".{name}.tmp-{os.getppid()}-0"
+        look_alike = tmp_path / f".{name}.tmp-{_dead_pid()}-7x"
+        for path in (dead, live, look_alike):
+            path.write_bytes(b"partial")
+        if name == "maze.toml":  # the core's writer
+            mazesim.load_world("seed-maze").save(str(target))
+        else:
+            with atomic_file(target) as handle:
+                handle.write(b"whole")
+        assert not dead.exists(), dead
+        assert live.exists() and look_alike.exists()
 
 
 def test_a_temporary_being_written_is_not_removed(tmp_path: Path) -> None:
@@ -281,3 +302,44 @@ def test_a_full_disk_names_the_users_file_not_the_temporary(
         with atomic_file(tmp_path / "no" / "such.json") as handle:
             handle.write(b"x")
     assert ".tmp" not in str(missing.value)
+
+
+def test_writers_of_one_target_on_many_threads_leave_one_whole_file(tmp_path: Path) -> None:
+    """Threads of one process writing one target at once, through the Python writer and the
+    core's (World.save) alike: every write ends, or fails with a MazesimError, and the target
+    is one writer's content whole, never a mix, with no temporary left behind."""
+    target = tmp_path / "shared.toml"
+    world = mazesim.load_world("seed-maze")
+    whole = world.to_toml().encode()
+    contents = {whole} | {bytes([65 + i]) * (50_000 + i) for i in range(4)}
+    start = threading.Barrier(8)
+    escaped: list[BaseException] = []
+
+    def python_writer(i: int) -> None:
+        start.wait()
+        for _ in range(20):
+            with atomic_file(target) as handle:
+                handle.write(bytes([65 + i]) * (50_000 + i))
+
+    def core_writer() -> None:
+        start.wait()
+        for _ in range(20):
+            world.save(str(target))
+
+    def guarded(work: Any, *args: int) -> None:
+        try:
+            work(*args)
+        except mazesim.MazesimError:
+            pass
+        except BaseException as error:  # noqa: BLE001 - anything else is the finding
+            escaped.append(error)
+
+    threads = [threading.Thread(target=guarded, args=(python_writer, i)) for i in range(4)]
+    threads += [threading.Thread(target=guarded, args=(core_writer,)) for _ in range(4)]
+    for thread in threads:
+        thread.start()
+    for thread in threads:
+        thread.join()
+    assert not escaped, escaped
+    assert target.read_bytes() in contents
+    assert _hidden(tmp_path) == []

@@ -140,3 +140,44 @@ def test_sb3_refuses_an_unknown_env_id_listing_mazesims() -> None:
     with pytest.raises(mazesim.UnknownNameError, match="mazesim/EPuckMaze-v0") as refused:
         make_vec_env("mazesim/EPuckMaz-v0")
     assert refused.value.suggestion == "mazesim/EPuckMaze-v0"
+
+
+def _hostile_actions(shape: tuple[int, ...]) -> dict[str, tuple[object, bool]]:
+    """Actions of ``shape`` in each hostile dress, and whether each must be refused: masked,
+    of objects, of text, of complex numbers or booleans (refused); non-contiguous, read-only or
+    big-endian (read by their values)."""
+    plain = np.full(shape, 0.25, np.float32)
+    wide = np.full((*shape[:-1], shape[-1] * 2), 0.25, np.float32)
+    read_only = plain.copy()
+    read_only.setflags(write=False)
+    return {
+        "masked": (np.ma.masked_array(plain, mask=np.ones(shape, bool)), True),
+        "objects": (plain.astype(object), True),
+        "text": (plain.astype(str), True),
+        "complex": (plain.astype(np.complex64), True),
+        "booleans": (np.ones(shape, bool), True),
+        "non-contiguous": (wide[..., ::2], False),
+        "read-only": (read_only, False),
+        "big-endian": (plain.astype(">f4"), False),
+    }
+
+
+@pytest.mark.parametrize("dress", sorted(_hostile_actions((2,))))
+def test_the_multi_robot_envs_read_actions_through_the_one_reader(dress: str) -> None:
+    """The multi-robot batch takes its actions as the single-robot envs do
+    (``mazesim.envs.spaces.real_actions``): what is no array of real numbers is refused with an
+    InvalidActionError, any layout of real numbers is read by its values."""
+    from mazesim.marl import maze_goals_v0
+
+    batch = maze_goals_v0.batch_env(2)
+    batch.reset(seed=3)
+    shape = (batch.num_envs, batch.num_robots, 2)
+    action, refused = _hostile_actions(shape)[dress]
+    if refused:
+        with pytest.raises(InvalidActionError):
+            batch.step(action)
+        return
+    moved = batch.step(action)[0]
+    again = maze_goals_v0.batch_env(2)
+    again.reset(seed=3)
+    assert np.array_equal(moved, again.step(np.full(shape, 0.25, np.float32))[0])

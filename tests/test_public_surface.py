@@ -385,3 +385,60 @@ def test_the_declared_refusals_are_refused() -> None:
     assert "mazesim.webots.camera:Camera.enable" in by_parameter, by_parameter
     failures = failures_of(plans, walk(plans))
     assert not failures, "\n".join(failures)
+
+
+def _name_checks() -> list[tuple[str, str, str]]:
+    """Each parameter of a function of the package that the function checks as a registered
+    name (its value passed to ``mazesim.errors._known_name``): (file, parameter, annotation)."""
+    import ast
+
+    import mazesim
+
+    root = Path(mazesim.__file__).parent
+    found = []
+    for path in sorted(root.rglob("*.py")):
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        for function in ast.walk(tree):
+            if not isinstance(function, (ast.FunctionDef, ast.AsyncFunctionDef)):
+                continue
+            arguments = function.args
+            every = [*arguments.posonlyargs, *arguments.args, *arguments.kwonlyargs]
+            annotated = {a.arg: ast.unparse(a.annotation) if a.annotation else "" for a in every}
+            for call in ast.walk(function):
+                if (
+                    isinstance(call, ast.Call)
+                    and getattr(call.func, "id", None) == "_known_name"
+                    and call.args
+                    and isinstance(call.args[0], ast.Name)
+                    and call.args[0].id in annotated
+                ):
+                    name = call.args[0].id
+                    found.append((str(path.relative_to(root)), name, annotated[name]))
+    return found
+
+
+def test_every_parameter_checked_as_a_registered_name_is_annotated_as_one() -> None:
+    """A parameter whose value a function checks as a registered name is annotated
+    ``RegisteredName``, so that the walk gives it a name no registry holds (by its annotation,
+    whatever it is called): a new function's name parameter is fuzzed by construction."""
+    checks = _name_checks()
+    assert len(checks) >= 8, checks
+    unannotated = [c for c in checks if "RegisteredName" not in c[2]]
+    assert not unannotated, unannotated
+
+
+def test_the_walk_finds_name_parameters_by_their_annotation() -> None:
+    """The registry reads the annotation: parameters of any name (``reward_type``, ``events``,
+    ``name``) are walked as names, and one of a name it once listed but of another type (an
+    array of ``events``) is not."""
+    named = {e.path: set(e.named) for e in python_entry_points() if e.named}
+    assert named.get("mazesim.envs.goal:MazeGoalEnv") == {"reward_type", "render_mode"}, named
+    assert named.get("mazesim.transfer.axes:axis_named") == {"name"}, named
+    assert named.get("mazesim.episodes:EpisodeBatch") == {"events"}, sorted(named)
+    assert not any(
+        path.startswith("mazesim.replay.navigator:") and "events" in names
+        for path, names in named.items()
+    )
+    entries = {e.path: e for e in python_entry_points()}
+    refused = refusals_of(entries["mazesim.transfer.axes:axis_named"])
+    assert [r.absurd for r in refused] == [{"name": ("unknown_name",)}]

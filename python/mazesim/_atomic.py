@@ -6,7 +6,8 @@ leaves it behind; the next write of the same target, by either writer (or
 :func:`remove_stale_temporaries`), removes it when it is clearly orphaned: made by a process that
 no longer runs, or by this process outside a write still in progress (this writer also removes
 one last changed before this process started). Temporaries of older mazesim versions
-(``.NAME.<8 characters>.tmp``) go when they are older than this process.
+(``.NAME.<8 characters>.tmp``) go when they are older than this process; those of the older
+core's writer (``.NAME.tmp-<pid>-<count>``) by the same rule as today's, by their pid.
 
 The code runs on Linux, macOS and Windows: the temporary file is created with the user's usual
 permissions, so no ``os.fchmod`` is needed (Windows has none before Python 3.13); files are
@@ -45,6 +46,7 @@ import time
 from collections.abc import Iterator
 from typing import IO, NamedTuple
 
+from mazesim._core import _temporary_writing
 from mazesim.errors import MazesimIOError, _path_of
 
 try:
@@ -65,8 +67,6 @@ __all__ = [
 _WINDOWS = sys.platform == "win32"
 #: When this process started writing files (module import), in the clock of file times.
 _PROCESS_STARTED = time.time()
-#: The temporary files this process is writing right now (absolute paths).
-_WRITING: set[str] = set()
 _SUFFIX = ".tmp"
 
 
@@ -75,6 +75,8 @@ NAME_MAX = 255
 #: Bytes a temporary name adds to its stem: the dot before it, ``.<10 digits>-<8 hex>.tmp``,
 #: and room for a suffix of up to 8 bytes a writer may add (``.mp4``).
 _ADDED = 1 + 1 + 10 + 1 + 8 + len(_SUFFIX) + 8
+#: Bytes the older core's temporary names (``.NAME.tmp-<pid>-<count>``) added to their stem.
+_OLD_CORE_ADDED = 1 + 5 + 10 + 1 + 20
 #: Where the system shows the files processes have open (``/dev/stdout`` leads there): a path
 #: through it is written into, never replaced.
 _PROCESS_FILES = "/proc/"
@@ -88,16 +90,17 @@ def _fnv1a(data: bytes) -> int:
     return value
 
 
-def _temporary_stem(base: str) -> str:
+def _temporary_stem(base: str, added: int = _ADDED) -> str:
     """The part of a temporary name taken from the target's name ``base``: the name itself, or
-    when the temporary name would pass :data:`NAME_MAX` bytes, its start cut at a character
-    boundary and marked with ``~`` and the 16 hex digits of the FNV-1a hash of the whole name
-    (the same stem as the core's writer, so either removes the other's orphans)."""
+    when the temporary name (which adds ``added`` bytes to it) would pass :data:`NAME_MAX`
+    bytes, its start cut at a character boundary and marked with ``~`` and the 16 hex digits
+    of the FNV-1a hash of the whole name (the same stem as the core's writer, so either removes
+    the other's orphans)."""
     encoded = base.encode("utf-8", "surrogateescape")
-    if len(encoded) + _ADDED <= NAME_MAX:
+    if len(encoded) + added <= NAME_MAX:
         return base
     digest = f"{_fnv1a(encoded):016x}"
-    room = NAME_MAX - _ADDED - 1 - len(digest)
+    room = NAME_MAX - added - 1 - len(digest)
     start = encoded[:room].decode("utf-8", "ignore")
     return f"{start}~{digest}"
 
@@ -111,10 +114,13 @@ def temporary_name(target: str) -> str:
 
 
 def _temporary_pattern(base: str) -> re.Pattern[str]:
-    """Names of this module's temporaries of ``base``: group ``pid`` set unless of old style."""
+    """Names of the temporaries of ``base`` (this module's, the core's, and those of older
+    versions of either): group ``pid`` set unless of the older Python writer's style."""
     return re.compile(
         rf"\.{re.escape(_temporary_stem(base))}\.(?:(?P<pid>[0-9]{{1,10}})-[0-9a-f]{{8}}"
         rf"|[a-z0-9_]{{8}}){re.escape(_SUFFIX)}"
+        rf"|\.{re.escape(_temporary_stem(base, _OLD_CORE_ADDED))}\.tmp-(?P<old_pid>[0-9]{{1,10}})"
+        rf"-[0-9]{{1,20}}"
     )
 
 
@@ -134,7 +140,9 @@ def _process_is_gone(pid: int) -> bool:
 def _is_orphaned(path: str, pid: int | None) -> bool:
     """Whether a temporary file is left over from a write that will never finish."""
     if pid == os.getpid():
-        return path not in _WRITING
+        # Not a write in progress of this process, by this writer or by the core's: one set of
+        # them, kept by the core, so that neither takes the other's temporary for an orphan.
+        return not _temporary_writing(os.path.basename(path))
     if pid is not None and _process_is_gone(pid):
         return True
     try:
@@ -164,7 +172,8 @@ def remove_stale_temporaries(path: str | os.PathLike[str]) -> list[str]:
         if found is None:
             continue
         candidate = os.path.join(folder, name)
-        pid = int(found["pid"]) if found["pid"] is not None else None
+        writer = found["pid"] or found["old_pid"]
+        pid = int(writer) if writer is not None else None
         if _is_orphaned(candidate, pid):
             with contextlib.suppress(OSError):
                 os.unlink(candidate)
@@ -374,7 +383,7 @@ def atomic_file(path: str | os.PathLike[str]) -> Iterator[IO[bytes]]:
         return
     remove_stale_temporaries(target.path)
     temporary = temporary_name(target.path)
-    _WRITING.add(temporary)
+    _temporary_writing(os.path.basename(temporary), True)
     try:
         try:
             # Created with the user's usual permissions (``0o666`` less the umask): no chmod.
@@ -400,4 +409,4 @@ def atomic_file(path: str | os.PathLike[str]) -> Iterator[IO[bytes]]:
             os.unlink(temporary)
         raise
     finally:
-        _WRITING.discard(temporary)
+        _temporary_writing(os.path.basename(temporary), False)

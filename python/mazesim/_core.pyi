@@ -26,6 +26,7 @@ __all__ = [
     "World",
     "__version__",
     "_panic_for_tests",
+    "_temporary_writing",
     "builtin_world_names",
     "default_codes",
     "file_kind",
@@ -114,6 +115,11 @@ def sharp_distances(
 
 def _panic_for_tests(message: str, on_helper_thread: bool = False) -> None:
     """Panics inside the core (only the tests of the panic guard call it)."""
+
+def _temporary_writing(name: str, writing: bool | None = None) -> bool:
+    """Whether this process is writing the temporary file ``name`` (a file name) now, after
+    marking it as being written or no longer when ``writing`` is given: the one set of writes in
+    progress of ``mazesim._atomic``'s writer and the core's."""
 
 def generate_maze(
     width: int = 5,

@@ -29,7 +29,7 @@ from mazesim._core import RobotProfile, World
 from mazesim._seeding import seed_sequence
 from mazesim._seeding import stream as random_stream
 from mazesim.batch import CONTROL_STEP_MS, RobotBatch, RobotChoice, cruise_step_length
-from mazesim.errors import InvalidArgumentError, _shown
+from mazesim.errors import InvalidArgumentError, RegisteredName, _shown
 from mazesim.maze import CellMaze, navigator_problems
 
 __all__ = [
@@ -127,7 +127,7 @@ class EpisodeBatch:
         jitter: StartJitter | None = None,
         noise: bool = True,
         max_steps: int = MAX_STEPS,
-        events: str = "truth",
+        events: RegisteredName = "truth",
         control_step_ms: float = CONTROL_STEP_MS,
         threads: int = 0,
         robot: RobotChoice = "seed",

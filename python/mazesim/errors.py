@@ -15,6 +15,7 @@ from __future__ import annotations
 import difflib
 import os
 import re
+from typing import Annotated
 
 __all__ = [
     "ClusterConnectionError",
@@ -111,8 +112,12 @@ class WorldFormatError(MazesimError, ValueError):
         self.field = field
 
 
-class UnknownNameError(MazesimError, LookupError):
+class UnknownNameError(MazesimError, LookupError, ValueError):
     """A name (a built-in world, a robot profile, a sensor) is not known.
+
+    It is a ``LookupError`` (a name looked up) and a ``ValueError`` (an argument's value out of
+    its choices), so code that caught ``ValueError`` for an unknown reward or action mode, which
+    once raised ``InvalidArgumentError``, still catches it.
 
     Given the name asked for and the names that exist, the message ends with the closest of
     them, as a typo's likely fix: ``...; did you mean 'seed-maze'?``.
@@ -137,6 +142,21 @@ class UnknownNameError(MazesimError, LookupError):
             message = f"{message}; did you mean {self.suggestion!r}?"
         super().__init__(message)
         self.available = available
+
+
+class _Registered:
+    """The mark of :data:`RegisteredName`."""
+
+    def __repr__(self) -> str:
+        return "a name a registry of mazesim holds"
+
+
+#: The annotation of every parameter whose value names a registered thing (an env id, a
+#: controller, a source of events, a render, action or reward mode, a shipped navigator's
+#: world): a ``str`` to type checkers, checked by :func:`_known_name`. The hostile walk of the
+#: package's surface finds these parameters by it, whatever they are called, and gives each a
+#: name no registry holds, which must be refused listing the known names.
+RegisteredName = Annotated[str, _Registered()]
 
 
 def _known_name(value: object, what: str, known: list[str] | tuple[str, ...]) -> str:

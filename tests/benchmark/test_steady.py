@@ -8,7 +8,7 @@ import pytest
 from mazesim.benchmark import MIN_WARMUP_STEPS, BenchSettings, SteadyState, measure
 from mazesim.benchmark.fresh import measure_in_fresh_process
 from mazesim.benchmark.steady import make_worlds
-from mazesim.errors import InvalidArgumentError
+from mazesim.errors import InvalidArgumentError, MazesimError
 
 
 def episode_clock(run: SteadyState) -> list[int]:
@@ -113,12 +113,13 @@ def test_memory_per_env_comes_from_a_fresh_process() -> None:
     [
         ("warmup_steps", 999, "warmup_steps: expected a whole number of at least 1000, found 999"),
         ("envs", 0, "envs: expected a whole number of at least 1, found 0"),
-        ("workload", "push", "workload: expected one of braitenberg, contact, random"),
-        ("mazes", "same", "mazes: expected one of distinct, shared, found 'same'"),
+        # A registered name: refused when the settings are made, listing the names.
+        ("workload", "push", "expected workload to be one of braitenberg, contact, random"),
+        ("mazes", "same", "expected mazes to be one of distinct, shared; found 'same'"),
     ],
 )
 def test_bad_settings_are_refused(field: str, value: object, message: str) -> None:
-    with pytest.raises(InvalidArgumentError, match=message):
+    with pytest.raises(MazesimError, match=message):
         SteadyState(small(**{field: value}))
 
 

@@ -255,15 +255,15 @@ def test_bad_vector_actions_name_the_environment() -> None:
 
 
 def test_bad_options_raise_clear_errors() -> None:
-    with pytest.raises(InvalidArgumentError, match="action_mode"):
+    with pytest.raises(mazesim.UnknownNameError, match="action_mode"):
         EPuckMazeEnv(action_mode="joystick")
     with pytest.raises(mazesim.UnknownNameError):
         EPuckMazeEnv(world="no-such-world")
     with pytest.raises(mazesim.UnknownNameError):
         EPuckMazeEnv(robot="no-such-robot")
-    with pytest.raises(InvalidArgumentError, match="render_mode"):
+    with pytest.raises(mazesim.UnknownNameError, match="render_mode"):
         EPuckMazeEnv(render_mode="window")
-    with pytest.raises(InvalidArgumentError, match="render_mode"):
+    with pytest.raises(mazesim.UnknownNameError, match="render_mode"):
         EPuckMazeVectorEnv(num_envs=2, render_mode="human")  # images only
     with pytest.raises(InvalidArgumentError, match="reset_mask"):
         vector = EPuckMazeVectorEnv(num_envs=2)

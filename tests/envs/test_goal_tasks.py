@@ -15,7 +15,7 @@ from gymnasium.utils.env_checker import check_env  # noqa: E402
 
 from mazesim.envs.goal import MazeGoalEnv  # noqa: E402
 from mazesim.envs.tasks import GOAL_TASKS  # noqa: E402
-from mazesim.errors import InvalidArgumentError  # noqa: E402
+from mazesim.errors import InvalidArgumentError, UnknownNameError  # noqa: E402
 
 IDS = [task.env_id for task in GOAL_TASKS]
 
@@ -78,7 +78,7 @@ def test_the_sparse_reward_is_zero_only_at_the_goal() -> None:
     goal = observation["desired_goal"]
     assert env.compute_reward(goal, goal, {}) == 0.0
     assert env.compute_reward(goal + np.float32(1.0), goal, {}) == -1.0
-    with pytest.raises(InvalidArgumentError, match="reward_type"):
+    with pytest.raises(UnknownNameError, match="expected reward_type to be one of sparse, dense"):
         MazeGoalEnv(reward_type="shaped")
 
 
@@ -183,7 +183,7 @@ def test_the_native_vector_env_equals_sync(env_id: str, autoreset_mode: str) -> 
 
 
 def test_the_native_vector_env_refuses_what_the_goal_env_refuses() -> None:
-    with pytest.raises(InvalidArgumentError, match="reward_type"):
+    with pytest.raises(UnknownNameError, match="reward_type"):
         gymnasium.make_vec(
             "mazesim/EPuckGoal-v0", 2, vectorization_mode="vector_entry_point", reward_type="x"
         )

@@ -17,13 +17,15 @@ import enum
 import importlib
 import inspect
 import pkgutil
+import typing
 import warnings
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
 from typing import Any
 
 import mazesim
-from mazesim._checks import is_public_module, public_names
+from mazesim._checks import _UNIONS, annotations_of, is_public_module, public_names
+from mazesim.errors import RegisteredName
 
 #: Modules not walked: the program entry point (running it is the CLI's entries) and the parts
 #: that start outside processes (ROS masters, Ray clusters, Webots controllers over a socket, the
@@ -271,35 +273,53 @@ MUST_REFUSE_BY_PARAMETER: dict[str, tuple[str, ...]] = {
     "samplingPeriod": ("period_2_40", "nan", "inf"),
 }
 
-#: The parameters that name a registered thing (an env id, a controller, a source of events, a
-#: render, action or reward mode, a shipped navigator's world), by name, declared once: a name
-#: is the domain's word for its value, the same in every signature (``task`` and ``subtask`` are
-#: not here: they are objects or indices in some). Each is given a name no registry holds, which
-#: must be refused with a message that lists the known names (``UnknownNameError``, or a
-#: message saying "expected one of").
-REGISTERED_NAME_PARAMETERS = (
-    "action_mode",
-    "controller",
-    "env_id",
-    "events",
-    "render_mode",
-    "reward_type",
-    "robot_model",
-    "world_name",
-)
-MUST_REFUSE_BY_PARAMETER.update(dict.fromkeys(REGISTERED_NAME_PARAMETERS, ("unknown_name",)))
+#: What a parameter annotated :data:`mazesim.errors.RegisteredName` (alone, or in a union with
+#: None) is given: a name no registry holds, which must be refused with a message that lists the
+#: known names (``UnknownNameError``, or a message saying "expected one of"). The parameters are
+#: found by their annotation, not by their names (``task``, ``events`` or ``controller`` are
+#: names in some signatures, objects, indices or arrays in others), so that a new function's
+#: name parameter is walked as soon as it is annotated as one.
+REGISTERED_NAME_VALUES = ("unknown_name",)
+
+
+def _is_registered_name(hint: Any) -> bool:
+    """Whether ``hint`` is :data:`mazesim.errors.RegisteredName`, alone or in a union."""
+    if hint == RegisteredName:
+        return True
+    return typing.get_origin(hint) in _UNIONS and any(
+        _is_registered_name(arg) for arg in typing.get_args(hint)
+    )
+
+
+def registered_name_parameters(target: Callable[..., Any]) -> tuple[str, ...]:
+    """The parameters of ``target`` (a class: of its constructor) annotated as names a registry
+    holds."""
+    if inspect.isclass(target):
+        target = getattr(target, "__init__", target)
+    return tuple(
+        name
+        for name, hint in annotations_of(target).items()
+        if name != "return" and _is_registered_name(hint)
+    )
 
 
 def refusals_of(entry: EntryPoint) -> tuple[MustRefuse, ...]:
     """The refusals ``entry`` must make: its own in :data:`MUST_REFUSE`, and one for each of its
-    parameters named in :data:`MUST_REFUSE_BY_PARAMETER` (when it has no other required one, and
-    is a Python entry point: a command's words are drawn by the walk of the command line)."""
+    parameters named in :data:`MUST_REFUSE_BY_PARAMETER` or annotated as a registered name
+    (when it has no other required one, and is a Python entry point: a command's words are
+    drawn by the walk of the command line)."""
+    declared = {
+        **{
+            name: keys
+            for name, keys in MUST_REFUSE_BY_PARAMETER.items()
+            if name in entry.parameters
+        },
+        **dict.fromkeys(entry.named, REGISTERED_NAME_VALUES),
+    }
     by_name = tuple(
         MustRefuse({}, {name: keys})
-        for name, keys in MUST_REFUSE_BY_PARAMETER.items()
-        if name in entry.parameters
-        and set(entry.required) <= {name}
-        and not entry.path.startswith("cli:")
+        for name, keys in declared.items()
+        if set(entry.required) <= {name} and not entry.path.startswith("cli:")
     )
     return MUST_REFUSE.get(entry.path, ()) + by_name
 
@@ -322,6 +342,8 @@ class EntryPoint:
     #: Whether it takes any number of positional (``*args``) and keyword (``**kwargs``) values.
     any_positional: bool = False
     any_keyword: bool = False
+    #: Those annotated :data:`mazesim.errors.RegisteredName`.
+    named: tuple[str, ...] = field(default=())
 
 
 def _modules() -> Iterator[Any]:
@@ -371,6 +393,9 @@ def _signature(target: Callable[..., Any], skip_first: bool) -> EntryPoint | Non
         ),
         any_positional=any(p.kind is p.VAR_POSITIONAL for p in params),
         any_keyword=any(p.kind is p.VAR_KEYWORD for p in params),
+        named=tuple(
+            name for name in registered_name_parameters(target) if name in {p.name for p in usable}
+        ),
     )
 
 

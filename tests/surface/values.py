@@ -420,6 +420,31 @@ def sample_instance(cls: type, world: Any, tmp: Path, depth: int = 0) -> Any:
     package's classes made the same way, a level deeper; an abstract class or a protocol by one
     of the package's classes that implements it). Raises when a parameter has no sample."""
     import inspect
+
+    value_of = _value_maker(world, tmp, depth)
+    if inspect.isabstract(cls) or getattr(cls, "_is_protocol", False):
+        return value_of(cls)  # one of its implementations
+    init = inspect.unwrap(cls.__init__)  # type: ignore[misc]
+    try:
+        return cls(**_sampled_arguments(init, value_of))
+    except Exception:
+        for factory in _factories(cls):  # else the package's own functions that make one
+            try:
+                return factory(**_sampled_arguments(factory, value_of))
+            except Exception:  # noqa: BLE001, S112 - try the next factory
+                continue
+        raise
+
+
+def sample_arguments(function: Any, world: Any, tmp: Path) -> dict[str, Any]:
+    """Valid values of ``function``'s required parameters, as :func:`sample_instance` gives a
+    constructor's. Raises when a parameter has no sample."""
+    return _sampled_arguments(function, _value_maker(world, tmp, 0))
+
+
+def _value_maker(world: Any, tmp: Path, depth: int) -> Any:
+    """The function that makes a valid value of an annotation (see :func:`sample_instance`)."""
+    import inspect
     import typing
 
     samples = _samples(world, tmp)
@@ -429,6 +454,8 @@ def sample_instance(cls: type, world: Any, tmp: Path, depth: int = 0) -> Any:
             sample = samples[hint]
             return sample() if callable(sample) and not isinstance(sample, type) else sample
         origin, args = typing.get_origin(hint), typing.get_args(hint)
+        if origin is typing.Annotated:  # a registered name is a str
+            return value_of(args[0])
         if origin is typing.Union or str(origin) == "<class 'types.UnionType'>":
             if type(None) in args:
                 return None
@@ -450,15 +477,4 @@ def sample_instance(cls: type, world: Any, tmp: Path, depth: int = 0) -> Any:
             return sample_instance(hint, world, tmp, depth + 1)
         raise TypeError(f"no sample of {hint!r}")
 
-    if inspect.isabstract(cls) or getattr(cls, "_is_protocol", False):
-        return value_of(cls)  # one of its implementations
-    init = inspect.unwrap(cls.__init__)  # type: ignore[misc]
-    try:
-        return cls(**_sampled_arguments(init, value_of))
-    except Exception:
-        for factory in _factories(cls):  # else the package's own functions that make one
-            try:
-                return factory(**_sampled_arguments(factory, value_of))
-            except Exception:  # noqa: BLE001, S112 - try the next factory
-                continue
-        raise
+    return value_of

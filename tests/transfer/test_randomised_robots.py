@@ -98,7 +98,9 @@ def test_a_bad_robot_is_refused_naming_the_valid_ones(
 def test_a_bad_robot_in_a_toml_file_names_the_file(tmp_path: Path) -> None:
     path = tmp_path / "bad.toml"
     path.write_text("[randomise]\nrobot = ['seed', 'khepera']\n")
-    with pytest.raises(UnknownNameError, match="robot profile named one of seed, ") as caught:
+    with pytest.raises(
+        UnknownNameError, match=r"expected robot \(in .*\) to be one of seed, "
+    ) as caught:
         parse_spec(path)
     assert str(path) in str(caught.value) and "'khepera'" in str(caught.value)
     path.write_text("[randomise]\nrobot = [1, 2]\n")

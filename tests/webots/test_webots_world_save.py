@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import json
 import math
+import os
 from pathlib import Path
 
 import pytest
@@ -60,6 +61,7 @@ Solid {
 #: angle its rotation field reads back.
 SAVER = """import json
 import math
+import os
 
 from controller import Supervisor
 
@@ -73,8 +75,9 @@ rover.getField("rotation").setSFRotation([0.0, 0.0, 1.0, math.pi])
 boss.step(step)
 angle = rover.getField("rotation").getSFRotation()[3]
 assert boss.worldSave("second.wbt")
+os.mkdir("folder.wbt")
 with open("angle.json", "w") as out:
-    json.dump(angle, out)
+    json.dump([angle, boss.worldSave("folder.wbt")], out)
 """
 
 
@@ -82,14 +85,22 @@ def test_a_saved_world_writes_numbers_as_a_person_would_and_only_fields_set(
     tmp_path: Path,
 ) -> None:
     world = project_of(tmp_path, "unposed.wbt", UNPOSED, {"saver": SAVER})
+    folder = tmp_path / "controllers" / "saver"
+    # A save is an atomic write: the temporary a killed save left is removed by the next.
+    # (Its writer's pid is past Linux's largest, 2**22: no process runs by it.)
+    orphan = folder / f".first.wbt.{2**22 + 1}-0123abcd.tmp"
+    orphan.write_text("half")
     robots = run_world(str(world), seconds=0.2, noise=False).robots
     assert [r.exit_status for r in robots] == [0, 0, 0], [r.error for r in robots]
-    folder = tmp_path / "controllers" / "saver"
+    assert not orphan.exists()
     # Nothing moved yet: the saved world reads as the file, no default field added.
     assert (folder / "first.wbt").read_text() == UNPOSED
     # The rover's fields as set, in the shortest text of their single-precision values, and
     # the half turn as pi, not -pi.
-    assert json.loads((folder / "angle.json").read_text()) == pytest.approx(math.pi)
+    angle, into_a_folder = json.loads((folder / "angle.json").read_text())
+    assert angle == pytest.approx(math.pi)
+    assert into_a_folder is False
+    assert not [name for name in os.listdir(folder) if name.endswith(".tmp")]
     lines = (folder / "second.wbt").read_text().split("\n")
     assert lines[3] == (
         'DEF ROVER E-puck { translation 0.3 0.2 0 rotation 0 0 1 3.1415927 name "rover" '

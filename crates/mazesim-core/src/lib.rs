@@ -63,7 +63,7 @@ mod io;
 pub mod limits;
 mod memory;
 pub mod rng;
-mod temporary_files;
+pub mod temporary_files;
 
 pub use batch::{Batch, OutputBuffers, StepOutputs};
 pub use control::Controller;

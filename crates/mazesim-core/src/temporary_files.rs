@@ -5,6 +5,10 @@
 //! fits the 255-byte limit); the next write of the target, from either writer, removes each
 //! temporary of that name made by a process that no longer runs, or by this process outside a
 //! write still in progress. Nothing else in the folder is touched.
+//!
+//! Older versions of the core named their temporaries `.NAME.tmp-<pid>-<count>` (a long `NAME`
+//! cut shorter, at [`OLD_ADDED`] bytes): those are removed under the same rule, by the pid
+//! their names carry.
 
 use std::collections::HashSet;
 use std::path::{Path, PathBuf};
@@ -17,22 +21,33 @@ pub(crate) const NAME_MAX: usize = 255;
 /// room for a suffix of up to 8 bytes (as the Python writer reserves).
 const ADDED: usize = 1 + 1 + 10 + 1 + 8 + 4 + 8;
 const SUFFIX: &str = ".tmp";
+/// Bytes the older core's temporary names (`.NAME.tmp-<pid>-<count>`) added to their stem: the
+/// dot before it, `.tmp-`, 10 digits of pid, `-` and 20 digits of count.
+const OLD_ADDED: usize = 1 + 5 + 10 + 1 + 20;
 
 /// Temporary files made by this process so far: each write has its own, even when several
 /// threads write the same path at once.
 static TEMPORARY_FILES: AtomicU64 = AtomicU64::new(0);
-/// The temporary files this process is writing now.
-static WRITING: Mutex<Option<HashSet<PathBuf>>> = Mutex::new(None);
+/// The temporary files this process is writing now, by file name (a name holds the writer's
+/// pid and a token of its own): the core's and, through [`set_writing`], the Python writer's,
+/// so that neither writer of a process takes the other's write in progress for an orphan.
+static WRITING: Mutex<Option<HashSet<String>>> = Mutex::new(None);
 
 /// The part of a temporary name taken from the target's name: the name itself, or when the
 /// temporary name would pass [`NAME_MAX`] bytes, its start (cut at a character boundary) and
 /// `~` with 16 hex digits of the FNV-1a hash of the whole name.
 pub(crate) fn temporary_stem(name: &str) -> String {
-    if name.len() + ADDED <= NAME_MAX {
+    stem_within(name, ADDED)
+}
+
+/// The stem of `name` in a temporary name that adds `added` bytes to it (see
+/// [`temporary_stem`]).
+fn stem_within(name: &str, added: usize) -> String {
+    if name.len() + added <= NAME_MAX {
         return name.to_string();
     }
     let hash = crate::fingerprint::fnv1a(name.as_bytes());
-    let mut room = NAME_MAX - ADDED - 1 - 16;
+    let mut room = NAME_MAX - added - 1 - 16;
     while !name.is_char_boundary(room) {
         room -= 1;
     }
@@ -60,37 +75,73 @@ impl Temporary {
             temporary_stem(name),
             std::process::id()
         ));
-        writing(|set| set.insert(path.clone()));
+        set_writing(&file_name(&path), true);
         Temporary { path }
     }
 }
 
 impl Drop for Temporary {
     fn drop(&mut self) {
-        writing(|set| set.remove(&self.path));
+        set_writing(&file_name(&self.path), false);
     }
 }
 
-fn writing<R>(f: impl FnOnce(&mut HashSet<PathBuf>) -> R) -> R {
+fn file_name(path: &Path) -> String {
+    path.file_name()
+        .map(|name| name.to_string_lossy().into_owned())
+        .unwrap_or_default()
+}
+
+fn writing<R>(f: impl FnOnce(&mut HashSet<String>) -> R) -> R {
     let mut guard = WRITING.lock().unwrap_or_else(|e| e.into_inner());
     f(guard.get_or_insert_with(HashSet::new))
 }
 
-/// The process id in `file`'s name when it is a temporary of the target `name`.
+/// Marks the temporary file `name` (a file name, no folder) as being written by this process
+/// (`true`) or no longer (`false`): the Python writer's temporaries join the core's here.
+pub fn set_writing(name: &str, now: bool) {
+    writing(|set| {
+        if now {
+            set.insert(name.to_string());
+        } else {
+            set.remove(name);
+        }
+    });
+}
+
+/// Whether this process is writing the temporary file `name` now (either writer).
+pub fn is_writing(name: &str) -> bool {
+    writing(|set| set.contains(name))
+}
+
+/// Whether `s` is 1 to `most` digits (lower-case hex digits too when `hex`).
+fn digits(s: &str, most: usize, hex: bool) -> bool {
+    s.len() <= most
+        && !s.is_empty()
+        && s.chars().all(|c| {
+            c.is_ascii_digit() || (hex && c.is_ascii_hexdigit() && !c.is_ascii_uppercase())
+        })
+}
+
+/// The process id in `file`'s name when it is a temporary of the target `name`: of this
+/// version's kind, or of the older core's (`.NAME.tmp-<pid>-<count>`).
 fn writer_of(file: &str, name: &str) -> Option<u32> {
-    let rest = file
-        .strip_prefix('.')?
+    let hidden = file.strip_prefix('.')?;
+    if let Some(rest) = hidden
+        .strip_prefix(stem_within(name, OLD_ADDED).as_str())
+        .and_then(|r| r.strip_prefix(".tmp-"))
+    {
+        if let Some((pid, count)) = rest.split_once('-') {
+            if digits(pid, 10, false) && digits(count, 20, false) {
+                return pid.parse().ok();
+            }
+        }
+    }
+    let rest = hidden
         .strip_prefix(temporary_stem(name).as_str())?
         .strip_prefix('.')?
         .strip_suffix(SUFFIX)?;
     let (pid, token) = rest.split_once('-')?;
-    let digits = |s: &str, n: usize, hex: bool| {
-        s.len() <= n
-            && !s.is_empty()
-            && s.chars().all(|c| {
-                c.is_ascii_digit() || (hex && c.is_ascii_hexdigit() && !c.is_ascii_uppercase())
-            })
-    };
     if !digits(pid, 10, false) || token.len() != 8 || !digits(token, 8, true) {
         return None;
     }
@@ -132,7 +183,7 @@ pub(crate) fn remove_orphans(dir: &Path, name: &str) -> Vec<PathBuf> {
         };
         let path = entry.path();
         let orphaned = if pid == std::process::id() {
-            !writing(|set| set.contains(&path))
+            !is_writing(&file_name(&path))
         } else {
             process_is_gone(pid)
         };
@@ -160,6 +211,40 @@ mod tests {
         assert_eq!(writer_of(".maze.toml.12-0123ABCD.tmp", "maze.toml"), None);
         assert_eq!(writer_of("maze.toml", "maze.toml"), None);
         assert_eq!(writer_of(".maze.toml.x-0123abcd.tmp", "maze.toml"), None);
+        // The older core's names, by their pid; nothing like them but not them.
+        assert_eq!(writer_of(".maze.toml.tmp-12-0", "maze.toml"), Some(12));
+        assert_eq!(
+            writer_of(".maze.toml.tmp-12-18446744073709551615", "maze.toml"),
+            Some(12)
+        );
+        assert_eq!(writer_of(".maze.toml.tmp-12-", "maze.toml"), None);
+        assert_eq!(writer_of(".maze.toml.tmp-12-3x", "maze.toml"), None);
+        assert_eq!(writer_of(".maze.toml.tmp-12", "maze.toml"), None);
+        assert_eq!(writer_of(".other.toml.tmp-12-0", "maze.toml"), None);
+    }
+
+    #[test]
+    fn the_older_cores_orphans_go_by_the_same_rule_and_a_running_writers_stay() {
+        let dir = std::env::temp_dir().join(format!("mazesim-old-orphans-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        // This process makes no temporary of the old kind: one with its pid is orphaned.
+        let own = dir.join(format!(".maze.toml.tmp-{}-3", std::process::id()));
+        // Process 1 (init) runs: its temporary may be a write in progress.
+        let running = dir.join(".maze.toml.tmp-1-0");
+        // A long name's old stem was cut shorter than today's.
+        let long = "m".repeat(240);
+        let cut = dir.join(format!(
+            ".{}.tmp-{}-0",
+            stem_within(&long, OLD_ADDED),
+            std::process::id()
+        ));
+        for path in [&own, &running, &cut] {
+            std::fs::write(path, b"half").unwrap();
+        }
+        assert_eq!(remove_orphans(&dir, "maze.toml"), vec![own.clone()]);
+        assert_eq!(remove_orphans(&dir, &long), vec![cut.clone()]);
+        assert!(running.exists() && !own.exists() && !cut.exists());
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     #[test]

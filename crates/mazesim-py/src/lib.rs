@@ -83,6 +83,19 @@ fn file_kind(text: Given<String>) -> PyResult<Option<(String, String)>> {
     })
 }
 
+/// Whether this process is writing the temporary file `name` (a file name) now, after marking it
+/// as being written (`writing` True) or no longer (False) when `writing` is given: the one set
+/// of writes in progress that the Python writer (`mazesim._atomic`) shares with the core's, so
+/// that neither removes the other's temporary as an orphan.
+#[pyfunction]
+#[pyo3(signature = (name, writing=None))]
+fn _temporary_writing(name: &str, writing: Option<bool>) -> bool {
+    if let Some(now) = writing {
+        mazesim_core::temporary_files::set_writing(name, now);
+    }
+    mazesim_core::temporary_files::is_writing(name)
+}
+
 /// Makes the state made once, on first use, ready while the import holds the interpreter alone:
 /// numpy's C API, the array borrow registry and what the buffer checks use. A process forked
 /// while another thread was making one would find it half-made in the child and wait for it for
@@ -105,6 +118,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(default_codes, m)?)?;
     m.add_function(wrap_pyfunction!(validate_codes, m)?)?;
     m.add_function(wrap_pyfunction!(file_kind, m)?)?;
+    m.add_function(wrap_pyfunction!(_temporary_writing, m)?)?;
     m.add_function(wrap_pyfunction!(wbt::import_wbt, m)?)?;
     m.add_function(wrap_pyfunction!(wbt::import_wbt_text, m)?)?;
     m.add_function(wrap_pyfunction!(guard::_panic_for_tests, m)?)?;

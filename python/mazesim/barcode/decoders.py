@@ -35,7 +35,7 @@ import numpy as np
 import numpy.typing as npt
 
 from mazesim.barcode.codebook import ARRIVAL, CodeBook
-from mazesim.errors import InvalidArgumentError, WrongTypeError, _a_type, _shown
+from mazesim.errors import InvalidArgumentError, RegisteredName, WrongTypeError, _a_type
 
 __all__ = [
     "BAR_LENGTH",
@@ -465,21 +465,13 @@ class RobustDecoder(Decoder):
 DECODERS: dict[str, type[Decoder]] = {"alg7": Alg7Decoder, "robust": RobustDecoder}
 
 
-def make_decoder(name: str, book: CodeBook, **options: Any) -> Decoder:
+def make_decoder(name: RegisteredName, book: CodeBook, **options: Any) -> Decoder:
     """A decoder by name ("alg7" or "robust") for a code book.
 
     Raises:
         UnknownNameError: No decoder has this name.
     """
-    from mazesim.errors import UnknownNameError
+    from mazesim.errors import _known_name
 
-    try:
-        cls = DECODERS[name]
-    except KeyError:
-        available = sorted(DECODERS)
-        raise UnknownNameError(
-            f"no decoder named {_shown(name)}; decoders: {', '.join(available)}",
-            available=available,
-            name=name,
-        ) from None
+    cls = DECODERS[_known_name(name, "decoder", sorted(DECODERS))]
     return cls(book, **options)

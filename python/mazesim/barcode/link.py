@@ -24,7 +24,11 @@ from collections.abc import Sequence
 import numpy as np
 import numpy.typing as npt
 
-from mazesim.errors import InvalidArgumentError, UnknownNameError, _shown
+from mazesim.errors import (
+    InvalidArgumentError,
+    RegisteredName,
+    _known_name,
+)
 
 __all__ = ["LINKS", "ROS_LINK_PERIODS", "UnsyncedLink", "check_link"]
 
@@ -34,19 +38,13 @@ LINKS = ("lockstep", "ros")
 ROS_LINK_PERIODS = (1, 2, 3)
 
 
-def check_link(name: str) -> str:
+def check_link(name: RegisteredName) -> str:
     """Returns ``name`` if it is one of :data:`LINKS`.
 
     Raises:
         UnknownNameError: Any other name.
     """
-    if name not in LINKS:
-        raise UnknownNameError(
-            f"no link named {_shown(name)}; links: {', '.join(LINKS)}",
-            available=list(LINKS),
-            name=name,
-        )
-    return name
+    return _known_name(name, "link", LINKS)
 
 
 class UnsyncedLink:

@@ -42,7 +42,7 @@ from mazesim.barcode.link import UnsyncedLink, check_link
 from mazesim.barcode.odometry import WheelEncoders, barcode_sensor_index
 from mazesim.barcode.reader import BatchBarcodeReader
 from mazesim.controllers import Explore
-from mazesim.errors import InvalidArgumentError, MazesimError, UnknownNameError, _shown
+from mazesim.errors import InvalidArgumentError, MazesimError, _known_name, _shown
 
 __all__ = [
     "DEFAULT_ENVS",
@@ -388,14 +388,8 @@ def run_study(
         UnknownNameError: An unknown decoder name or link.
         InvalidArgumentError: Empty lists, bad values.
     """
-    unknown = [name for name in decoders if name not in DECODERS]
-    if unknown:
-        available = sorted(DECODERS)
-        raise UnknownNameError(
-            f"no decoder named {_shown(unknown[0])}; decoders: {', '.join(available)}",
-            available=available,
-            name=unknown[0],
-        )
+    for name in decoders:
+        _known_name(name, "decoder", sorted(DECODERS))
     check_link(link)
     if not decoders or not (thresholds or speeds):
         raise InvalidArgumentError("expected at least one decoder and one threshold or speed")

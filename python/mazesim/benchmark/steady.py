@@ -23,8 +23,8 @@ from typing import Any
 import numpy as np
 
 import mazesim
-from mazesim._settings import setting
-from mazesim.errors import InvalidArgumentError, _shown
+from mazesim._settings import check_choices, setting
+from mazesim.errors import InvalidArgumentError, RegisteredName, _shown
 
 from .memory import engine_bytes, resident_bytes
 from .workloads import WORKLOADS, Workload, make_workload
@@ -71,13 +71,13 @@ class BenchSettings:
     """
 
     envs: int = 1024
-    workload: str = setting(
+    workload: RegisteredName = setting(
         "braitenberg",
         "the wheel-speed rule: braitenberg (wander clear of walls), contact (about "
         "half the steps pushing into walls), random (uniform wheel speeds)",
         choices=tuple(WORKLOADS),
     )
-    mazes: str = setting(
+    mazes: RegisteredName = setting(
         "distinct", "a generated maze per env, or one shared by all", choices=MAZE_KINDS
     )
     threads: int = setting(0, "worker threads", "T", default_text="0 = all cores")
@@ -89,6 +89,10 @@ class BenchSettings:
     )
     steps_per_call: int = 1
     seed: int = setting(0, "seeds the mazes, the sensor noise and the random workload", "S")
+
+    def __post_init__(self) -> None:
+        # A workload or a maze kind is a registered name, refused when made (as its option).
+        check_choices(self)
 
     def check(self) -> None:
         """Raises :class:`~mazesim.errors.InvalidArgumentError` naming the first bad field."""
@@ -119,22 +123,12 @@ class BenchSettings:
                 f"benchmark setting seed: env i's maze takes seed + i, so expected a seed of at "
                 f"most 2^64 - {self.envs} for {self.envs} envs, found {self.seed}"
             )
-        if self.workload not in WORKLOADS:
-            raise InvalidArgumentError(
-                f"benchmark setting workload: expected one of {', '.join(WORKLOADS)}, "
-                f"found {_shown(self.workload)}"
-            )
         if self.steps_per_call > 1 and WORKLOADS[self.workload].builtin is None:
             multi = ", ".join(name for name, kind in WORKLOADS.items() if kind.builtin)
             raise InvalidArgumentError(
                 f"benchmark setting steps_per_call: the {self.workload} workload runs one step "
                 f"per call (the engine has no controller for it), found {self.steps_per_call}; "
                 f"workloads that run many steps per call: {multi}"
-            )
-        if self.mazes not in MAZE_KINDS:
-            raise InvalidArgumentError(
-                f"benchmark setting mazes: expected one of {', '.join(MAZE_KINDS)}, "
-                f"found {_shown(self.mazes)}"
             )
 
 

@@ -20,7 +20,7 @@ from typing import Literal, Optional, Protocol
 import numpy as np
 import numpy.typing as npt
 
-from mazesim.errors import UnknownNameError, _shown
+from mazesim.errors import RegisteredName, _known_name
 
 __all__ = [
     "WORKLOADS",
@@ -200,18 +200,11 @@ WORKLOADS: dict[str, type[BraitenbergWorkload | ContactWorkload | RandomWorkload
 }
 
 
-def make_workload(name: str, envs: int, seed: int = 0) -> Workload:
+def make_workload(name: RegisteredName, envs: int, seed: int = 0) -> Workload:
     """The workload called ``name`` for a batch of ``envs`` envs.
 
     Raises:
         UnknownNameError: ``name`` is not one of :data:`WORKLOADS`.
     """
-    try:
-        kind = WORKLOADS[name]
-    except KeyError:
-        raise UnknownNameError(
-            f"expected a workload among {', '.join(WORKLOADS)}, found {_shown(name)}",
-            available=list(WORKLOADS),
-            name=name,
-        ) from None
+    kind = WORKLOADS[_known_name(name, "a workload", tuple(WORKLOADS))]
     return kind(envs, seed)

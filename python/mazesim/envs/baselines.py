@@ -37,7 +37,7 @@ from typing import Any, Protocol
 import numpy as np
 import numpy.typing as npt
 
-from mazesim.errors import InvalidArgumentError, _known_name, _shown
+from mazesim.errors import InvalidArgumentError, RegisteredName, _known_name, _shown
 
 __all__ = [
     "BaselineResult",
@@ -394,7 +394,7 @@ def _episode_agents(
 
 
 def evaluate(
-    task: str,
+    task: RegisteredName,
     agent: Callable[..., Any] | EpisodeAgent | PredictingModel | None,
     episodes: int = 100,
     seed: int = 10**6,

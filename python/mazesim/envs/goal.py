@@ -33,7 +33,7 @@ from mazesim._core import World
 from mazesim.envs.maze_env import EPuckMazeEnv
 from mazesim.envs.options import DEFAULT_MAX_EPISODE_STEPS, EnvOptions
 from mazesim.envs.vector import EPuckMazeVectorEnv
-from mazesim.errors import InvalidArgumentError, _shown
+from mazesim.errors import InvalidArgumentError, RegisteredName, _known_name, _shown
 
 __all__ = ["REWARD_TYPES", "MazeGoalEnv", "MazeGoalVectorEnv"]
 
@@ -53,13 +53,17 @@ class MazeGoalEnv(gymnasium.Env[Observation, Any]):
             (or ``start_goal="random"``).
 
     Raises:
-        InvalidArgumentError: An unknown reward type, a world without a goal or a bad option.
+        UnknownNameError: An unknown reward type or render mode.
+        InvalidArgumentError: A world without a goal or a bad option.
     """
 
     metadata: dict[str, Any] = EPuckMazeEnv.metadata
 
     def __init__(
-        self, reward_type: str = "sparse", render_mode: str | None = None, **options: Any
+        self,
+        reward_type: RegisteredName = "sparse",
+        render_mode: RegisteredName | None = None,
+        **options: Any,
     ) -> None:
         _check_reward_type(reward_type)
         self.reward_type = reward_type
@@ -167,7 +171,8 @@ class MazeGoalVectorEnv(VectorEnv[Observation, Any, Any]):
             have a goal (or ``start_goal="random"``).
 
     Raises:
-        InvalidArgumentError: An unknown reward type, a world without a goal or a bad option.
+        UnknownNameError: An unknown reward type or render mode.
+        InvalidArgumentError: A world without a goal or a bad option.
     """
 
     metadata: dict[str, Any] = EPuckMazeVectorEnv.metadata
@@ -175,9 +180,9 @@ class MazeGoalVectorEnv(VectorEnv[Observation, Any, Any]):
     def __init__(
         self,
         num_envs: int = 1,
-        reward_type: str = "sparse",
+        reward_type: RegisteredName = "sparse",
         max_episode_steps: int | None = DEFAULT_MAX_EPISODE_STEPS,
-        render_mode: str | None = None,
+        render_mode: RegisteredName | None = None,
         **options: Any,
     ) -> None:
         _check_reward_type(reward_type)
@@ -316,12 +321,8 @@ class MazeGoalVectorEnv(VectorEnv[Observation, Any, Any]):
         }
 
 
-def _check_reward_type(reward_type: str) -> None:
-    if reward_type not in REWARD_TYPES:
-        raise InvalidArgumentError(
-            f"expected reward_type to be one of {', '.join(REWARD_TYPES)}; found "
-            f"{_shown(reward_type)}"
-        )
+def _check_reward_type(reward_type: RegisteredName) -> None:
+    _known_name(reward_type, "reward_type", REWARD_TYPES)
 
 
 def _check_goal(world: World, goal: tuple[float, float, float] | None, options: EnvOptions) -> None:

@@ -20,7 +20,12 @@ from mazesim.envs.navigation import (
 )
 from mazesim.envs.options import EnvOptions, draw_seed, json_world_spec
 from mazesim.envs.spaces import ActionConverter, ObservationLayout, sensor_ranges
-from mazesim.errors import InvalidArgumentError, WrongTypeError, _a_type, _shown
+from mazesim.errors import (
+    RegisteredName,
+    WrongTypeError,
+    _a_type,
+    _known_name,
+)
 from mazesim.maze import PathDistanceTable
 from mazesim.render.episode import EpisodeTrace
 from mazesim.render.topdown import TopDownRenderer
@@ -74,14 +79,13 @@ def step_length_ms(options: EnvOptions, world: World) -> float:
     )
 
 
-def check_render_mode(render_mode: str | None, modes: Sequence[str] = RENDER_MODES) -> None:
-    """Raises InvalidArgumentError unless ``render_mode`` is None or one of ``modes``
+def check_render_mode(
+    render_mode: RegisteredName | None, modes: Sequence[str] = RENDER_MODES
+) -> None:
+    """Raises UnknownNameError unless ``render_mode`` is None or one of ``modes``
     (WrongTypeError for one that is not a str)."""
     if render_mode is not None and render_mode not in modes:
-        raise InvalidArgumentError(
-            f"expected render_mode to be None or one of {', '.join(modes)}; found "
-            f"{_shown(render_mode)}"
-        )
+        _known_name(render_mode, "render_mode", tuple(modes))
 
 
 class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
@@ -135,7 +139,7 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
 
     metadata: dict[str, Any] = {"render_modes": RENDER_MODES, "render_fps": 31.25}
 
-    def __init__(self, render_mode: str | None = None, **options: Any) -> None:
+    def __init__(self, render_mode: RegisteredName | None = None, **options: Any) -> None:
         check_render_mode(render_mode)
         self._closed = False
         self.render_mode = render_mode

@@ -28,7 +28,7 @@ from mazesim.envs.navigation import (
     start_and_goal_cells,
 )
 from mazesim.envs.reward import RewardWeights
-from mazesim.errors import InvalidArgumentError, _closest_name, _shown
+from mazesim.errors import InvalidArgumentError, RegisteredName, _closest_name, _known_name, _shown
 
 __all__ = [
     "ACTION_MODES",
@@ -130,10 +130,10 @@ class EnvOptions:
         cls,
         world: WorldOption = "seed-maze",
         robot: str | os.PathLike[str] = "e-puck",
-        action_mode: str = "continuous",
+        action_mode: RegisteredName = "continuous",
         clip_actions: bool = True,
-        observation: str = "sensors",
-        start_goal: str = "world",
+        observation: RegisteredName = "sensors",
+        start_goal: RegisteredName = "world",
         noise: bool = True,
         include_pose: bool = False,
         control_step_ms: float | None = None,
@@ -185,22 +185,13 @@ class EnvOptions:
 
         Raises:
             InvalidArgumentError: An option has a wrong type or value.
-            UnknownNameError: The world or the robot profile does not exist.
+            UnknownNameError: The world or the robot profile does not exist, or an unknown
+                action mode, observation or start.
             WorldFormatError: The world file is malformed.
         """
-        if action_mode not in ACTION_MODES:
-            raise InvalidArgumentError(
-                f"expected action_mode to be one of {', '.join(ACTION_MODES)}; "
-                f"found {_shown(action_mode)}"
-            )
-        for name, value, accepted in (
-            ("observation", observation, OBSERVATIONS),
-            ("start_goal", start_goal, START_GOALS),
-        ):
-            if value not in accepted:
-                raise InvalidArgumentError(
-                    f"expected {name} to be one of {', '.join(accepted)}; found {_shown(value)}"
-                )
+        _known_name(action_mode, "action_mode", ACTION_MODES)
+        _known_name(observation, "observation", OBSERVATIONS)
+        _known_name(start_goal, "start_goal", START_GOALS)
         flags = (("noise", noise), ("include_pose", include_pose), ("clip_actions", clip_actions))
         for name, flag in flags:
             if not isinstance(flag, (bool, np.bool_)):

@@ -49,13 +49,15 @@ from gymnasium import spaces
 
 from mazesim._core import RobotProfile, World
 from mazesim.actions import ACTION_CODES, WHEEL_SPEED_FRACTIONS
-from mazesim.errors import InvalidActionError, _shown
+from mazesim.errors import InvalidActionError, RegisteredName, _a_type, _shown
 
 __all__ = [
     "NOISE_MARGIN",
     "ActionConverter",
     "ObservationLayout",
     "SensorRanges",
+    "action_array",
+    "real_actions",
 ]
 
 
@@ -166,7 +168,7 @@ class ActionConverter:
         clip: Whether continuous actions outside [-1, 1] are clipped to it (else they raise).
     """
 
-    def __init__(self, action_mode: str, max_speed: float, clip: bool = False) -> None:
+    def __init__(self, action_mode: RegisteredName, max_speed: float, clip: bool = False) -> None:
         self.discrete = action_mode == "discrete"
         self.clip = clip
         self.max_speed = np.float32(max_speed)
@@ -187,7 +189,7 @@ class ActionConverter:
         """
         # The common action (a native float32 array of two fractions, as the space samples it)
         # is read without conversions; any other goes through the full check below.
-        array = action if type(action) is np.ndarray else _as_array(action)
+        array = action if type(action) is np.ndarray else action_array(action)
         if not self.discrete and array.dtype is _FLOAT32 and array.shape == (2,):
             left, right = array.tolist()
             if -1.0 <= left <= 1.0 and -1.0 <= right <= 1.0:  # False for NaN too
@@ -211,7 +213,7 @@ class ActionConverter:
 
     def batch(self, actions: Any, num_envs: int) -> npt.NDArray[np.float32]:
         """The (N, 2) float32 wheel speeds in rad/s of a batch of actions."""
-        array = _as_array(actions)
+        array = action_array(actions)
         if self.discrete:
             if array.shape != (num_envs,) or array.dtype.kind not in "iu":
                 raise InvalidActionError(
@@ -234,15 +236,51 @@ class ActionConverter:
         return fractions * self.max_speed
 
 
-def _as_array(actions: Any) -> npt.NDArray[Any]:
-    """``actions`` as a numpy array, refusing a masked array (``np.asarray`` would drop its
-    mask and read the masked entries as the numbers under them), as the core's buffers do."""
+def action_array(
+    actions: Any, what: str = "actions", kind: str = "real numbers (float32)"
+) -> npt.NDArray[Any]:
+    """``actions`` as a numpy array: the one reader of the actions of every env, the
+    multi-robot ones too. A masked array is refused (``np.asarray`` would drop its mask and read
+    the masked entries as the numbers under them, as the core's buffers refuse it), and so is
+    what numpy cannot read as an array (a ragged list, a value whose ``__array__`` fails).
+    Arrays of any layout (non-contiguous, read-only, big-endian) are read as their values; the
+    caller checks the dtype (an object or text array is no numbers) and converts.
+
+    Raises:
+        InvalidActionError: A masked array, or a value that is no array.
+    """
     if isinstance(actions, np.ma.MaskedArray):
         raise InvalidActionError(
-            "expected actions as a plain array, found a numpy masked array (its mask would be "
-            "dropped): pass array.filled(value) with the value masked entries should take"
+            f"expected {what} to be {kind} in a plain array, found a numpy masked array (its "
+            "mask would be dropped): pass array.filled(value) with the value masked entries "
+            "should take"
         )
-    return np.asarray(actions)
+    try:
+        return np.asarray(actions)
+    except (TypeError, ValueError, OverflowError, RecursionError) as error:
+        raise InvalidActionError(
+            f"expected {what} to be {kind}, found {_a_type(actions)} numpy cannot read: "
+            f"{_shown(str(error))}"
+        ) from None
+
+
+def real_actions(
+    actions: Any, what: str = "actions", kind: str = "real numbers (float32)"
+) -> npt.NDArray[np.float32]:
+    """``actions`` (:func:`action_array`) as a new C-ordered, native float32 array, refusing an
+    array of anything but real numbers (objects, text, complex numbers, booleans): numpy would
+    read the text ``"0.5"`` as a number, and drop a complex number's imaginary part with a
+    warning.
+
+    Raises:
+        InvalidActionError: As :func:`action_array`, or an array of no real numbers.
+    """
+    array = action_array(actions, what, kind)
+    if array.dtype.kind not in "fiu":
+        raise InvalidActionError(
+            f"expected {what} to be {kind}, found an array of dtype {array.dtype}"
+        )
+    return np.array(array, dtype=np.float32, order="C")
 
 
 def _check_fractions(

@@ -45,7 +45,7 @@ from mazesim.envs.options import (
 )
 from mazesim.envs.reward import step_reward
 from mazesim.envs.spaces import ActionConverter, ObservationLayout, sensor_ranges
-from mazesim.errors import InvalidArgumentError, WrongTypeError, _a_type, _shown
+from mazesim.errors import InvalidArgumentError, RegisteredName, WrongTypeError, _a_type, _shown
 from mazesim.maze import GoalDistance, PathDistanceTable
 from mazesim.render.episode import EpisodeTrace
 from mazesim.render.topdown import TopDownRenderer
@@ -115,7 +115,7 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
         self,
         num_envs: int = 1,
         max_episode_steps: int | None = DEFAULT_MAX_EPISODE_STEPS,
-        render_mode: str | None = None,
+        render_mode: RegisteredName | None = None,
         threads: int = 0,
         autoreset_mode: AutoresetMode | str = AutoresetMode.NEXT_STEP,
         vector_kwargs: dict[str, Any] | None = None,

@@ -29,6 +29,7 @@ from mazesim._paths import make_output_folder
 from mazesim.errors import (
     InvalidArgumentError,
     MissingDependencyError,
+    RegisteredName,
     WrongTypeError,
     _a_type,
     _known_name,
@@ -72,7 +73,7 @@ _PER_ENVIRONMENT = {
 
 
 def make_vec_env(
-    env_id: str = "mazesim/EPuckMaze-v0",
+    env_id: RegisteredName = "mazesim/EPuckMaze-v0",
     n_envs: int = 1,
     seed: int | None = None,
     start_index: int = 0,

@@ -54,7 +54,7 @@ from mazesim.episodes import (
     run_episodes,
     shortest_path_steps,
 )
-from mazesim.errors import InvalidArgumentError
+from mazesim.errors import InvalidArgumentError, RegisteredName
 from mazesim.learn.core_episodes import StretchReplay, run_navigator_episodes, stretches_apply
 from mazesim.learn.discretise import format_levels
 from mazesim.learn.episode_ranges import NavigatorEpisodes
@@ -153,7 +153,7 @@ class EvalSettings:
     seed: int = setting(
         0, "seed of the episodes' start jitter and sensor noise, and of the random mazes", "S"
     )
-    events: str = setting(
+    events: RegisteredName = setting(
         "both",
         "checkpoint events from the simulator's ground truth, from the robust barcode "
         "decoder, or both, reported side by side",

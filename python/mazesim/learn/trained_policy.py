@@ -17,7 +17,7 @@ import numpy.typing as npt
 
 from mazesim._core import World
 from mazesim.actions import ACTION_CODES
-from mazesim.errors import PolicyFormatError, UnknownNameError, _known_name, _shown
+from mazesim.errors import PolicyFormatError, RegisteredName, UnknownNameError, _known_name, _shown
 from mazesim.learn.subtasks import CONTROL_STEP_MS
 from mazesim.maze import world_hash
 
@@ -29,7 +29,7 @@ __all__ = [
 ]
 
 
-def shipped_policy_dir(world_name: str = "seed-maze") -> Path:
+def shipped_policy_dir(world_name: RegisteredName = "seed-maze") -> Path:
     """The folder of the navigator shipped in the package for a built-in world.
 
     Raises:

@@ -22,6 +22,7 @@ import numpy.typing as npt
 from mazesim._core import BatchSimulator, RobotProfile
 from mazesim._sizes import MOST_ENVS
 from mazesim.envs.errors import MAX_SEED, is_seed
+from mazesim.envs.spaces import real_actions
 from mazesim.errors import InvalidActionError, InvalidArgumentError, _shown
 from mazesim.marl.tasks import EpisodeDraw, MultiRobotTask, RobotStates, agent_names
 
@@ -189,7 +190,7 @@ class MultiRobotBatch:
         if self.simulator is None:
             raise InvalidArgumentError("expected reset() before step()")
         n, r = self.num_envs, self.num_robots
-        wanted = np.asarray(actions, dtype=np.float32)
+        wanted = real_actions(actions)
         if wanted.shape != (n, r, 2):
             raise InvalidActionError(f"expected actions of shape {(n, r, 2)}, found {wanted.shape}")
         if not np.isfinite(wanted).all():

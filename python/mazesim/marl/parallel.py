@@ -20,6 +20,7 @@ import numpy.typing as npt
 from pettingzoo import ParallelEnv
 
 from mazesim.envs.errors import EnvClosedError, ResetNeededError, check_options, check_seed
+from mazesim.envs.spaces import real_actions
 from mazesim.errors import InvalidActionError, InvalidArgumentError, _a_type, _shown
 from mazesim.marl.batch import MultiRobotBatch
 from mazesim.marl.render import SwarmRenderer
@@ -151,14 +152,9 @@ class MultiRobotParallelEnv(ParallelEnv[str, Observation, npt.NDArray[np.float32
         wheels = np.zeros((1, len(self.possible_agents), 2), np.float32)
         for i, agent in enumerate(self.possible_agents):
             if agent in self.agents:
-                try:
-                    action = np.asarray(actions[agent], dtype=np.float32)
-                except (TypeError, ValueError, OverflowError) as error:
-                    found = repr(actions[agent])[:60]
-                    raise InvalidActionError(
-                        f"expected the action of {agent} to be two wheel speeds (numbers), found "
-                        f"{found}: {error}"
-                    ) from None
+                action = real_actions(
+                    actions[agent], f"the action of {agent}", "two wheel speeds (numbers)"
+                )
                 if action.shape != (2,):
                     raise InvalidActionError(
                         f"expected the action of {agent} of shape (2,), found {action.shape}"

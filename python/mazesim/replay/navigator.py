@@ -19,6 +19,7 @@ import numpy.typing as npt
 
 from mazesim.actions import ACTION_CODES
 from mazesim.episodes import EpisodeBatch, NavigatorWrapper
+from mazesim.errors import RegisteredName
 from mazesim.learn.subtasks import SUBTASK_NAMES
 from mazesim.replay.recorder import EpisodeRecorder, reading_scale
 from mazesim.replay.run import RecordedRun
@@ -102,7 +103,7 @@ class NavigatorRecorder(NavigatorWrapper):
                 recorder.finished = True
                 self.outcomes[recorder.number] = "goal reached" if arrived[env] else "out of time"
 
-    def run(self, controller: str, seed: int) -> RecordedRun:
+    def run(self, controller: RegisteredName, seed: int) -> RecordedRun:
         """The recorded episodes as a run (in the first world of the batch)."""
         nav = self.nav
         hierarchical = hasattr(self.navigator, "higher")

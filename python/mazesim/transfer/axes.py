@@ -42,7 +42,12 @@ from dataclasses import dataclass, field
 from typing import Any, Union
 
 from mazesim.barcode.link import LINKS
-from mazesim.errors import InvalidArgumentError, UnknownNameError, _shown
+from mazesim.errors import (
+    InvalidArgumentError,
+    RegisteredName,
+    _known_name,
+    _shown,
+)
 
 __all__ = [
     "AXES",
@@ -160,20 +165,13 @@ AXES: tuple[Axis, ...] = (
 AXIS_NAMES: tuple[str, ...] = tuple(axis.name for axis in AXES)
 
 
-def axis_named(name: str) -> Axis:
+def axis_named(name: RegisteredName) -> Axis:
     """The axis called ``name``.
 
     Raises:
         UnknownNameError: No such axis.
     """
-    for axis in AXES:
-        if axis.name == name:
-            return axis
-    raise UnknownNameError(
-        f"no transfer axis named {_shown(name)}; axes: {', '.join(AXIS_NAMES)}",
-        available=list(AXIS_NAMES),
-        name=name,
-    )
+    return AXES[AXIS_NAMES.index(_known_name(name, "transfer axis", AXIS_NAMES))]
 
 
 def parse_axes(text: str | Iterable[str]) -> tuple[Axis, ...]:

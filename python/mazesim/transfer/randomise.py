@@ -42,7 +42,7 @@ from mazesim._paths import read_text
 from mazesim._seeding import stream
 from mazesim._toml import load_toml
 from mazesim.batch import RobotChoice
-from mazesim.errors import InvalidArgumentError, UnknownNameError, _shown
+from mazesim.errors import InvalidArgumentError, _known_name, _shown
 from mazesim.learn.fleet import Fleet, ReadingsMap
 from mazesim.transfer.axes import AXIS_NAMES, Setting, axis_named
 from mazesim.transfer.cells import SEED_ROBOT, profile_of
@@ -76,13 +76,7 @@ def _robot_names(value: Any, where: str) -> tuple[str, ...]:
             f"found {_shown(value)}"
         )
     for name in names:
-        if name not in valid:
-            raise UnknownNameError(
-                f"{where}: robot: expected a robot profile named one of {', '.join(valid)}, "
-                f"found {_shown(name)}",
-                available=list(valid),
-                name=name,
-            )
+        _known_name(name, f"robot (in {where})", tuple(valid))
     return tuple(names)
 
 

@@ -18,7 +18,7 @@ from dataclasses import dataclass
 
 from mazesim._core import World
 from mazesim.episodes import EVENT_SOURCES
-from mazesim.errors import InvalidArgumentError, _known_name
+from mazesim.errors import InvalidArgumentError, RegisteredName, _known_name
 from mazesim.learn.evaluate import navigator_for
 from mazesim.learn.tables import TrainedPolicy
 from mazesim.transfer.axes import AXES, Axis, Level, Setting
@@ -57,10 +57,10 @@ class StudyOptions:
     episodes: int = DEFAULT_EPISODES
     pairs: bool = True
     seed: int = 0
-    events: str = "robust"
+    events: RegisteredName = "robust"
     max_steps: int = DEFAULT_MAX_STEPS
     threads: int = 0
-    odometry: str = "encoders"
+    odometry: RegisteredName = "encoders"
 
     def __post_init__(self) -> None:
         _known_name(self.events, "events", EVENT_SOURCES)

@@ -25,6 +25,7 @@ from __future__ import annotations
 import math
 from typing import Any
 
+from mazesim._atomic import atomic_file
 from mazesim.errors import MazesimError
 from mazesim.webots import simulation as _simulations
 from mazesim.webots.devices import _print_error, webots_property
@@ -983,10 +984,13 @@ class Supervisor(Robot):
                 text = with_fields(text, node._line, fields)
         target = filename if filename is not None else str(self._simulation.report["path"])
         try:
-            with open(target, "w", encoding="utf-8") as out:
-                out.write(text)
-        except OSError as failed:
-            _print_error(f"Error: wb_supervisor_world_save(): cannot write {target}: {failed}.")
+            # Atomic, as every file mazesim writes: a reader (Webots, a second save) sees the old
+            # world file or the new one whole.
+            with atomic_file(target) as out:
+                out.write(text.encode("utf-8"))
+        except MazesimError as failed:
+            reason = getattr(failed, "strerror", None) or failed
+            _print_error(f"Error: wb_supervisor_world_save(): cannot write {target}: {reason}.")
             return False
         return True
 
