@@ -139,7 +139,11 @@ def read_recognition(text: str) -> RecognitionReport:
         if node.type_name in _ROBOTS and robot_line == 0:
             robot_line = line
         if node.type_name == "Camera":
-            _camera(node, robot_line, report)
+            name = first_value([node], "name", Field.string) or "camera"
+            _camera(node.field("recognition"), name, robot_line, report)
+        elif node.type_name in _ROBOTS:
+            # The E-puck PROTO's field for its own camera's Recognition node.
+            _camera(node.field("camera_recognition"), "camera", robot_line, report)
         if (colours := _colours(node)) is not None:
             found = _object(node, frame, nue, colours, line, top_id, defined)
             if found is not None:
@@ -148,7 +152,7 @@ def read_recognition(text: str) -> RecognitionReport:
         inner = [
             (child, frame, robot_line, 0)
             for item in node.fields
-            if item.name not in ("boundingObject", "recognition")
+            if item.name not in ("boundingObject", "recognition", "camera_recognition")
             for child in item.nodes
         ]
         pending.extend(reversed(inner))
@@ -174,9 +178,9 @@ def _frame_of(node: Node, holder: Frame) -> Frame:
     return placed(holder, offset, _numbers(node, "rotation", 4))
 
 
-def _camera(node: Node, robot_line: int, report: RecognitionReport) -> None:
-    """Adds a Camera's Recognition node, if it has one, to the report."""
-    field = node.field("recognition")
+def _camera(field: Field | None, camera: str, robot_line: int, report: RecognitionReport) -> None:
+    """Adds the Recognition node a camera's ``field`` holds (a Camera's ``recognition``, an
+    E-puck's ``camera_recognition``), if it holds one, to the report as camera ``camera``'s."""
     held = field.nodes[0] if field is not None and field.nodes else None
     if held is None or held.type_name != "Recognition":
         return
@@ -185,7 +189,7 @@ def _camera(node: Node, robot_line: int, report: RecognitionReport) -> None:
     report["cameras"].append(
         {
             "robot_line": robot_line,
-            "camera": first_value([node], "name", Field.string) or "camera",
+            "camera": camera,
             "max_range": (_numbers(held, "maxRange", 1) or (100.0,))[0],
             "max_objects": _whole(held, "maxObjects", -1),
             # An SFBool before R2021b, an SFInt32 (0, 1 or 2) since.

@@ -113,8 +113,9 @@ class SceneNode:
         children: The nodes of its ``children`` field, for a grouping node, a plain robot or a
             device (:data:`CHILDREN_TYPES`); their ``translation`` and ``rotation`` are in its
             frame.
-        slots: The nodes of each of its fields whose name ends in ``Slot`` (an E-puck's
-            ``turretSlot``, ``groundSensorsSlot`` and ``bodySlot``), by field name, for a node
+        slots: The nodes of each of its slot fields (an E-puck's ``turretSlot``,
+            ``groundSensorsSlot`` and ``bodySlot``, a project PROTO's ``extensionSlot1``:
+            :func:`_is_slot_field`), by field name, for a node
             that is not the run's robot; their poses are in the slot's frame.
         nodes: The node of each of its fields that holds one node (a Shape's ``geometry`` and
             ``appearance``, an Appearance's ``material``, a Solid's ``boundingObject``).
@@ -609,13 +610,20 @@ def _single_nodes(node: Node) -> list[tuple[str, Node]]:
     ]
 
 
+def _is_slot_field(name: str) -> bool:
+    """Whether a robot node's field is an extension slot: its name ends in ``Slot``, or in
+    ``Slot`` and a number, as a project's own PROTO numbers the slots it adds
+    (``extensionSlot1``); the core's import reads the same fields."""
+    return name.rstrip("0123456789").endswith("Slot")
+
+
 def _slot_nodes(node: Node) -> list[tuple[str, Node]]:
-    """The nodes of a node's fields whose name ends in ``Slot``, with the field's name, in file
+    """The nodes of a node's slot fields (:func:`_is_slot_field`), with the field's name, in file
     order."""
     return [
         (item.name, held)
         for item in node.own_fields()
-        if item.name.endswith("Slot")
+        if _is_slot_field(item.name)
         for held in item.nodes
     ]
 

@@ -1,5 +1,6 @@
 //! Devices mounted in the e-puck's extension slots (`turretSlot`, `groundSensorsSlot`,
-//! `bodySlot`, and any other `...Slot` field): a GPS or a Compass on the turret, extra distance
+//! `bodySlot`, and any other `...Slot` field, or numbered `...Slot1` field of a project's own
+//! PROTO): a GPS or a Compass on the turret, extra distance
 //! sensors, light sensors. Each is listed with its type, name, pose in the robot's frame (x
 //! forward, y left, z up, metres; the slot's origin taken as the robot's) and its other fields;
 //! anything else in a slot is a warning.
@@ -313,11 +314,20 @@ fn slot_frame(robot_type: &str, slot: &str, y_up: bool) -> Frame {
     }
 }
 
+/// Whether a robot node's field is an extension slot: its name ends in `Slot`, or in `Slot`
+/// and a number, as a project's own PROTO numbers the slots it adds (`extensionSlot1`,
+/// `extensionSlot2`). Webots reads none of these names: a PROTO mounts whatever nodes such a
+/// field holds among the robot's children.
+pub fn is_slot_field(name: &str) -> bool {
+    name.trim_end_matches(|c: char| c.is_ascii_digit())
+        .ends_with("Slot")
+}
+
 impl<'d> Importer<'d> {
-    /// Lists the devices in every `...Slot` field of a robot node.
+    /// Lists the devices in every slot field of a robot node ([`is_slot_field`]).
     pub fn extension_slots(&mut self, robot: &'d Node) {
         for field in &robot.fields {
-            if !field.name.ends_with("Slot") {
+            if !is_slot_field(&field.name) {
                 continue;
             }
             let frame = slot_frame(&robot.type_name, &field.name, self.y_up);

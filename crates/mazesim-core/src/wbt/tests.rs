@@ -626,6 +626,23 @@ fn a_turret_slot_device_sits_on_top_of_the_turret() {
 }
 
 #[test]
+fn a_numbered_slot_of_a_projects_proto_holds_devices() {
+    // A project's own E-puck PROTO may add slots named extensionSlot1, extensionSlot2: their
+    // devices are the robot's, as those of a slot whose name ends in Slot; other fields are not.
+    let text = "#VRML_SIM R2023b utf8\nE-puck { extensionSlot1 [ GPS { name \"g1\" } ] \
+                extensionSlot2 [ Compass { } ] slotNodes [ GPS { name \"no\" } ] }\n";
+    let found = import(text).extension_devices;
+    let names: Vec<(&str, &str)> = found
+        .iter()
+        .map(|d| (d.name.as_str(), d.slot.as_str()))
+        .collect();
+    assert_eq!(
+        names,
+        [("g1", "extensionSlot1"), ("compass", "extensionSlot2")]
+    );
+}
+
+#[test]
 fn cr_line_ends_read_as_lines() {
     let lf = "#VRML_SIM R2023b utf8\n# a comment\nWoodenBox { translation 0.3 0 0.05 size 0.1 0.1 0.1 }\nE-puck { }\n";
     let cr = import(&lf.replace('\n', "\r"));
