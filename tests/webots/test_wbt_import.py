@@ -165,7 +165,7 @@ def test_collision_avoidance_ball_is_a_movable_disc_the_robot_pushes() -> None:
             "center": (0.2, 0.0),
             "radius": 0.05,
             "mass": ball["mass"],
-            "friction": 0.5,
+            "friction": 1.0,  # Webots' default contact's coulombFriction
             "reflectance": 1.0,
         }
     ]

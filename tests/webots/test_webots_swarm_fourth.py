@@ -35,8 +35,11 @@ def test_two_robots_push_a_crate_ahead_of_them(tmp_path: Path) -> None:
     track = {int(step): position for step, position in logs["referee"].items()}
     assert track[1][:2] == pytest.approx([-0.15, 0.0])
     moved = track[max(track)][0] - track[1][0]
-    driven = 93 * 0.032 * 3.0 * WHEEL_RADIUS
-    assert 0.08 < moved < driven - 0.063 + 1e-3
+    # Their motors hold their speed against the crate's floor friction: it goes as far as
+    # they drove past the 6.3 cm gap.
+    driven = [r.distance_m for r in done.robots[:2]]
+    assert driven == pytest.approx([94 * 0.032 * 3.0 * WHEEL_RADIUS] * 2, rel=0.01)
+    assert moved == pytest.approx(min(driven) - 0.063, abs=1e-3)
     assert abs(track[max(track)][1]) < 0.005
     for name in ("left_pusher", "right_pusher"):
         assert max(logs[name]["front_at_start"]) < 150

@@ -7,12 +7,14 @@
 //! pushes the bodies. The solver's length unit is scaled to the e-puck so its allowed penetration
 //! and prediction distance are fractions of a millimetre, not of a metre.
 //!
-//! Floor friction of a movable body: seen from above there is no gravity to press a body on the
-//! floor, so the floor's friction is a damping of its linear and angular velocity at a rate of
-//! `friction * FLOOR_DAMPING_PER_FRICTION` per second. A body sliding at 1 m/s slows at `mu * g`,
-//! as Coulomb friction would slow it; slower bodies slow less, and a pushed body coasts a short way
-//! (at the e-puck's top speed and friction 0.5, about 2.6 cm) before it stops. Contacts between the
-//! robot, the bodies and the walls have no friction.
+//! Floor friction of a movable body is Coulomb's kinetic friction, as Webots' ODE applies it
+//! with a contact's `coulombFriction` `mu`: a body sliding on the floor slows at `mu * g`
+//! whatever its speed, until it stops (a pushed body coasts `v^2 / (2 mu g)`: at the e-puck's
+//! top speed, 0.129 m/s, and `mu` 0.5, 1.7 mm). Its turn slows by the torque of that friction
+//! spread evenly over its footprint (`mu m g` times the footprint's mean distance from the
+//! centre, over the moment of inertia): linear and angular friction are applied apart, over
+//! each half of every physics step, and neither reverses a motion. Contacts between the robot, the
+//! bodies and the walls have no friction.
 
 use rapier2d::parry::query::Ray;
 use rapier2d::prelude::*;
@@ -20,9 +22,9 @@ use rapier2d::prelude::*;
 use crate::contact;
 use crate::world::{BodyShape, MovableBody, RayHit, WallBox, WallIndex};
 
-/// Damping rate (1/s) of a movable body per unit of floor friction coefficient: g, 9.81 m/s^2,
-/// over a reference speed of 1 m/s.
-pub const FLOOR_DAMPING_PER_FRICTION: f32 = 9.81;
+/// Gravity (m/s^2), which presses a movable body on the floor: Webots' `WorldInfo.gravity`
+/// default.
+pub const GRAVITY: f32 = 9.81;
 
 /// Rapier's solver iterations: a push through a chain of bodies needs more than one.
 const SOLVER_ITERATIONS_WITH_BODIES: usize = 4;
@@ -68,6 +70,79 @@ struct Scene {
     robots: Vec<RigidBodyHandle>,
     /// The movable bodies with their reflectance, in world order.
     movables: Vec<(RigidBodyHandle, ColliderHandle, f32)>,
+    /// Each movable body's floor friction (`FloorFriction`), in the order of `movables`.
+    frictions: Vec<FloorFriction>,
+}
+
+/// The slowing of a movable body by the floor's Coulomb friction: its linear deceleration
+/// (m/s^2) and its angular one (rad/s^2) while it slides and turns.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct FloorFriction {
+    linear: f32,
+    angular: f32,
+    /// Whether a robot's wheels overcome this friction (`mu m g` within `ROBOT_GRIP`).
+    yields_to_robots: bool,
+}
+
+/// The mass of a robot's body in the scene (kg): an e-puck's, about 0.16 kg.
+const ROBOT_MASS: f32 = 0.16;
+
+/// The force a robot's wheels push with before they slip (N): Coulomb friction 1 (Webots'
+/// default contact) on the robot's weight.
+const ROBOT_GRIP: f64 = ROBOT_MASS as f64 * GRAVITY as f64;
+
+/// A movable body within this distance of a robot's body (m) touches it.
+const TOUCHING: f32 = 1e-4;
+
+impl FloorFriction {
+    /// The friction of `m` on the floor: `mu g` along its motion, and about its centre the
+    /// torque of `mu m g` spread evenly over its footprint over its moment of inertia (a disc's
+    /// `4 mu g / (3 r)`).
+    fn of(m: &MovableBody) -> Self {
+        let linear = m.friction * f64::from(GRAVITY);
+        // The footprint's mean distance from its centre, and its radius of gyration squared.
+        let (mean_arm, gyration) = match m.shape {
+            BodyShape::Circle { radius } => (2.0 * radius / 3.0, radius * radius / 2.0),
+            BodyShape::Box { half: [a, b] } => {
+                let d = a.hypot(b);
+                let arm = (d
+                    + a * a / (2.0 * b) * ((b + d) / a).ln()
+                    + b * b / (2.0 * a) * ((a + d) / b).ln())
+                    / 3.0;
+                (arm, (a * a + b * b) / 3.0)
+            }
+        };
+        FloorFriction {
+            linear: linear as f32,
+            angular: (linear * mean_arm / gyration) as f32,
+            yields_to_robots: linear * m.mass <= ROBOT_GRIP,
+        }
+    }
+
+    /// Slows `body` by this friction over `dt` seconds, to rest at most.
+    fn slow(self, body: &mut RigidBody, dt: f32) {
+        let v = body.linvel();
+        let speed = v.length();
+        let lost = self.linear * dt;
+        if speed > 0.0 {
+            let kept = if speed > lost {
+                (speed - lost) / speed
+            } else {
+                0.0
+            };
+            body.set_linvel(v * kept, false);
+        }
+        let w = body.angvel();
+        let turn_lost = self.angular * dt;
+        if w != 0.0 {
+            let kept = if w.abs() > turn_lost {
+                w - turn_lost * w.signum()
+            } else {
+                0.0
+            };
+            body.set_angvel(kept, false);
+        }
+    }
 }
 
 fn wrap_angle(a: f32) -> f32 {
@@ -95,13 +170,10 @@ fn wall(w: &WallBox) -> ColliderBuilder {
 /// Inserts movable body `m` into `world` at its start, at rest: its body, its collider and its
 /// reflectance.
 fn movable(world: &mut PhysicsWorld, m: &MovableBody) -> (RigidBodyHandle, ColliderHandle, f32) {
-    let damping = m.friction as f32 * FLOOR_DAMPING_PER_FRICTION;
     let [x, y, yaw] = m.start.map(|v| v as f32);
     let rigid = RigidBodyBuilder::dynamic()
         .translation(Vector::new(x, y))
         .rotation(yaw)
-        .linear_damping(damping)
-        .angular_damping(damping)
         .can_sleep(false)
         .build();
     let handle = world.bodies.insert(rigid);
@@ -146,7 +218,7 @@ impl Scene {
                 let robot = world.bodies.insert(body);
                 // e-puck mass is about 0.16 kg; only the ratio to walls (infinite) matters here.
                 let ball = ColliderBuilder::ball(radius)
-                    .mass(0.16)
+                    .mass(ROBOT_MASS)
                     .friction(0.0)
                     .friction_combine_rule(CoefficientCombineRule::Min)
                     .restitution(0.0);
@@ -157,12 +229,56 @@ impl Scene {
             })
             .collect();
         let movables = bodies.iter().map(|m| movable(&mut world, m)).collect();
+        let frictions = bodies.iter().map(FloorFriction::of).collect();
         Scene {
             world,
             walls,
             robots,
             movables,
+            frictions,
         }
+    }
+
+    /// One physics step: the floor's friction slows every movable body over half the step,
+    /// rapier steps (moving each at that mid-step velocity, as a constant deceleration moves
+    /// it), and the friction slows them over the other half.
+    fn step(&mut self) {
+        self.slow_movables();
+        self.world.step();
+        self.slow_movables();
+    }
+
+    /// Slows every movable body by its floor friction over half a physics step, but for one a
+    /// robot pushes whose friction its wheels overcome: its pusher's motors hold their speed,
+    /// so the body goes at the pusher's speed, as in Webots (a heavier body is slowed as a free
+    /// one, and slows its pusher).
+    fn slow_movables(&mut self) {
+        let half = 0.5 * self.world.integration_parameters.dt;
+        for (&(handle, collider, _), friction) in self.movables.iter().zip(&self.frictions) {
+            if friction.yields_to_robots && self.touches_a_robot(collider) {
+                continue;
+            }
+            friction.slow(&mut self.world.bodies[handle], half);
+        }
+    }
+
+    /// Whether `collider` touches a robot's body (as the last step's contacts found it).
+    fn touches_a_robot(&self, collider: ColliderHandle) -> bool {
+        let world = &self.world;
+        world.narrow_phase.contact_pairs_with(collider).any(|pair| {
+            let other = if pair.collider1 == collider {
+                pair.collider2
+            } else {
+                pair.collider1
+            };
+            let robot = (world.colliders.get(other))
+                .and_then(|c| c.parent())
+                .is_some_and(|body| self.robots.contains(&body));
+            robot
+                && pair
+                    .find_deepest_contact()
+                    .is_some_and(|(_, contact)| contact.dist <= TOUCHING)
+        })
     }
 
     /// Takes `walls` in place of the walls the scene was made among (some of them moved).
@@ -208,6 +324,7 @@ impl Scene {
                 None => movable(world, m),
             })
             .collect();
+        self.frictions = bodies.iter().map(FloorFriction::of).collect();
     }
 
     /// The pose of robot `index`'s body.
@@ -336,7 +453,7 @@ impl Body {
             body.set_linvel(Vector::new(v[0], v[1]), true);
             body.set_angvel(angular, true);
         }
-        scene.world.step();
+        scene.step();
         poses.extend((0..scene.robots.len()).map(|i| scene.robot_pose(i)));
         let first = poses[0];
         self.set_pose(first);
@@ -395,7 +512,7 @@ impl Body {
             let body = &mut scene.world.bodies[scene.robots[0]];
             body.set_linvel(Vector::new(velocity[0], velocity[1]), true);
             body.set_angvel(angular, true);
-            scene.world.step();
+            scene.step();
             let pose = scene.robot_pose(0);
             self.set_pose(pose);
         } else if clearance - speed * self.dt > FREE_FLIGHT_MARGIN {

@@ -926,7 +926,8 @@ def _say_what_is_missing(
 ) -> tuple[bool, dict[str, str], dict[str, PreparedController]]:
     """Prepares each robot's controller once (a C or C++ one is built into the cache, which its
     process then takes) and says at the run's start what each one lacks, as a run of one robot
-    does, each statement once for the world with the robots it concerns (thirty robots of one
+    does (but for the supervisor's imports and removals, which a run of the whole world does),
+    each statement once for the world with the robots it concerns (thirty robots of one
     controller are named on one line); the list is kept on its robot's run. A C or C++
     controller that does not compile leaves its robot standing still, the others running, as in
     Webots. Returns whether a controller's Tk windows need a virtual display, the environment
@@ -944,7 +945,8 @@ def _say_what_is_missing(
             prepared[run.controller] = done
             for note in done.notes:
                 print(f"mazesim: {note}", file=sys.stderr)
-        run.missing = tuple(prepared[run.controller].missing)
+        done = prepared[run.controller]
+        run.missing = tuple(m for m in done.missing if m not in done.met_in_world_runs)
         for missing in run.missing:
             concerned.setdefault(missing, []).append(repr(run.name))
     for missing, names in concerned.items():

@@ -172,6 +172,8 @@ class PreparedController:
         virtual_display: Whether its run draws its Tk windows on a virtual display
             (:mod:`mazesim.webots.virtual_display`): it opens some and ``$DISPLAY`` is not set.
         environment: Environment variables its run sets (Qt's windows drawn off screen).
+        met_in_world_runs: The statements of ``missing`` that a run of the whole world meets
+            (its supervisor's imports and removals), which such a run does not print.
     """
 
     file: str
@@ -182,6 +184,7 @@ class PreparedController:
     notes: list[str] = field(default_factory=list)
     virtual_display: bool = False
     environment: dict[str, str] = field(default_factory=dict)
+    met_in_world_runs: list[str] = field(default_factory=list)
 
 
 def _guarded(tree: ast.AST) -> set[int]:
@@ -629,7 +632,9 @@ def prepare_controller(file: str) -> PreparedController:
         prepared.missing.append(MOTOR_LIMITS.format(calls=", ".join(calls)))
     calls = scene_changes(file, language)
     if calls:
-        prepared.missing.append(SCENE_CHANGES.format(calls=", ".join(calls)))
+        statement = SCENE_CHANGES.format(calls=", ".join(calls))
+        prepared.missing.append(statement)
+        prepared.met_in_world_runs.append(statement)
     calls = range_readings(file, language)
     if calls:
         prepared.missing.append(RANGE_READINGS.format(calls=", ".join(calls)))

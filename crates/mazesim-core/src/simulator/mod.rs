@@ -328,8 +328,12 @@ impl Simulator {
     /// Back at the start pose among the walls of `world` (this robot's world as it was made,
     /// before `take_world`), the movable bodies at their starts, all at rest (see
     /// `Swarm::reset_scene`), the noise stream started again from the seed of the last `reset`
-    /// and the sensors read there as `reset` reads them; time and counters go on.
+    /// and the sensors read there as `reset` reads them; time and counters go on. The wheels'
+    /// angles drop what they turned past their encoders' last tick, so that the encoders count
+    /// the turns from here as Webots' position sensors count them from a reset joint: a reading
+    /// less the reading here is the turn since, quantised, never a tick off.
     pub(crate) fn restart_among(&mut self, world: &Arc<World>) {
+        self.wheel_angles = self.encoders();
         self.forget_moves(world);
         let start = self.start_pose().map(|v| v as f32);
         self.place(start);

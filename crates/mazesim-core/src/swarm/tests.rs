@@ -169,9 +169,13 @@ fn a_robot_pushes_a_box_into_another_robots_path() {
     }
     let after = swarm.robots()[1].pose();
     let box_now = swarm.robots()[0].body_poses()[0];
-    // Nothing went through anything: the crosser is not inside the box's square.
-    let inside = (after[0] - box_now[0]).abs() < 0.02 + 0.037 - 1e-3
-        && (after[1] - box_now[1]).abs() < 0.02 + 0.037 - 1e-3;
+    // Nothing went through anything: the crosser's disc does not overlap the box's square
+    // (its centre, in the box's frame, at least its radius from the square).
+    let (s, c) = box_now[2].sin_cos();
+    let [dx, dy] = [after[0] - box_now[0], after[1] - box_now[1]];
+    let local = [c * dx + s * dy, c * dy - s * dx];
+    let outside = local.map(|v| (v.abs() - 0.02).max(0.0));
+    let inside = outside[0].hypot(outside[1]) < 0.037 - 1e-3;
     assert!(!inside, "crosser {after:?} inside the box at {box_now:?}");
     assert!(
         after[1] > before[1],
@@ -551,9 +555,16 @@ fn a_body_set_moving_slides_and_slows() {
     assert_eq!((vx, vy, turn), (0.0, -0.2, 1.0));
     swarm.step(&[[0.0, 0.0]]).unwrap();
     let [x, y, _] = swarm.robots()[0].body_poses()[0];
-    let slower = swarm.robots()[0].body_velocities()[0][1];
-    assert!(x.abs() < 1e-6 && y < 0.3 - 0.004, "body at ({x}, {y})");
-    assert!(slower > -0.2 && slower < -0.1, "vy {slower}");
+    let [_, slower, turn] = swarm.robots()[0].body_velocities()[0];
+    // Coulomb friction 0.5: 0.5 g off the speed per second whatever the speed, and the travel
+    // of a constant deceleration.
+    let (dt, slowing) = (0.032, 0.5 * 9.81);
+    let travel = 0.2 * dt - 0.5 * slowing * dt * dt;
+    assert!(x.abs() < 1e-6, "body at ({x}, {y})");
+    assert!((y - (0.3 - travel)).abs() < 1e-4, "body at ({x}, {y})");
+    assert!((slower - (slowing * dt - 0.2)).abs() < 1e-4, "vy {slower}");
+    // The turn of a 4 cm box stops within 4 ms at this friction.
+    assert_eq!(turn, 0.0);
     let error = swarm
         .set_body_velocity(1, [0.0; 3])
         .unwrap_err()
@@ -566,6 +577,60 @@ fn a_body_set_moving_slides_and_slows() {
         .set_body_velocity(0, [f64::NAN, 0.0, 0.0])
         .unwrap_err();
     assert!(error.to_string().contains("vx"), "{error}");
+}
+
+#[test]
+fn a_sliding_body_stops_after_the_coulomb_distance_whatever_its_speed() {
+    // v^2 / (2 mu g): a body twice as fast slides four times as far, to a step's resolution.
+    for speed in [0.05_f32, 0.1, 0.2] {
+        let mut swarm = quiet(gate_world(0.5, true));
+        swarm
+            .set_body_velocity(0, [0.0, -f64::from(speed), 0.0])
+            .unwrap();
+        for _ in 0..20 {
+            swarm.step(&[[0.0, 0.0]]).unwrap();
+        }
+        let [_, y, _] = swarm.robots()[0].body_poses()[0];
+        let expected = speed * speed / (2.0 * 0.5 * 9.81);
+        assert!(
+            ((0.3 - y) - expected).abs() < 7e-4,
+            "{speed} m/s: slid {}",
+            0.3 - y
+        );
+        assert_eq!(swarm.robots()[0].body_velocities()[0], [0.0; 3]);
+    }
+}
+
+#[test]
+fn encoders_count_the_turn_since_a_reset_to_the_tick() {
+    // Webots' position sensor restarts from its reset joint: the reading after a reset is the
+    // turn since, quantised; never the difference of two quantised readings, a tick off.
+    let resolution = 0.00628;
+    let mut profile = RobotProfile::builtin("e-puck").unwrap();
+    profile.encoder_resolution = resolution;
+    let config = SimConfig {
+        noise: false,
+        ..SimConfig::default()
+    };
+    let mut swarm = Swarm::new(gate_world(0.5, false), Arc::new(profile), config).unwrap();
+    let quantised = |a: f64| (a / resolution).round() * resolution;
+    // 4.4 ticks before the reset, then 3.3 ticks a step: without dropping the 0.4 of a tick
+    // at the reset, the first reading would be 4 ticks (round(7.7) - round(4.4)), not 3.
+    let (before_speed, speed) = (0.8635_f64, 0.6476_f64);
+    swarm.step(&[[before_speed, before_speed]]).unwrap();
+    swarm.reset_scene();
+    let [before, _] = swarm.robots()[0].encoders();
+    for steps in 1..=4 {
+        swarm.step(&[[speed, speed]]).unwrap();
+        let turned = f64::from(speed as f32) * 0.032 * f64::from(steps);
+        let [after, _] = swarm.robots()[0].encoders();
+        assert!(
+            (after - before - quantised(turned)).abs() < 1e-9,
+            "after {steps} steps: {} for {}",
+            after - before,
+            quantised(turned)
+        );
+    }
 }
 
 #[test]

@@ -12,8 +12,13 @@ use super::ground::{floor_under, shifted_warning, Surface};
 use super::shapes::snap;
 use super::tree::{Document, Node, NodeId};
 use super::{Obstacle, RobotChoice, WbtImport, WorldRobot};
-use crate::world::spec::{BodySpec, DEFAULT_BODY_FRICTION};
+use crate::world::spec::BodySpec;
 use crate::world::values::{Finite, NonNegative, Positive, Reflectance};
+
+/// The floor friction of an imported movable body: the `coulombFriction` of Webots' default
+/// contact (`ContactProperties`, whose `coulombFriction` defaults to 1), which every contact
+/// between two solids of the `default` material (the Solid's `contactMaterial` default) uses.
+pub const WEBOTS_COULOMB_FRICTION: f64 = 1.0;
 
 /// Webots' default `WorldInfo.basicTimeStep` in milliseconds.
 pub const DEFAULT_BASIC_TIME_STEP_MS: f64 = 32.0;
@@ -687,7 +692,7 @@ impl<'d> Importer<'d> {
                     size: size.map(Positive),
                     yaw: Finite(yaw),
                     mass: Positive(mass),
-                    friction: NonNegative(DEFAULT_BODY_FRICTION),
+                    friction: NonNegative(WEBOTS_COULOMB_FRICTION),
                     reflectance,
                 }
             }
@@ -696,7 +701,7 @@ impl<'d> Importer<'d> {
                     center: center.map(Finite),
                     radius: Positive(radius),
                     mass: Positive(mass),
-                    friction: NonNegative(DEFAULT_BODY_FRICTION),
+                    friction: NonNegative(WEBOTS_COULOMB_FRICTION),
                     reflectance,
                 }
             }

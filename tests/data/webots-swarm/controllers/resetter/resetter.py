@@ -19,7 +19,7 @@ while supervisor.step(time_step) != -1:
     steps += 1
     if steps == 20:
         gate.setSFVec3f([-0.12, 0.6, 0.05])
-        box.setVelocity([0.0, -0.2, 0.0, 0.0, 0.0, 0.0])
+        box.setVelocity([0.0, -0.7, 0.0, 0.0, 0.0, 0.0])
     if steps == 21:
         seen["box_sliding"] = box.getVelocity()
     if steps == 30:
