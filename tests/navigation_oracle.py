@@ -1,6 +1,7 @@
 """The numpy navigation features the gymnasium tasks observed before the core computed them
 (``mazesim._core.TaskFeatures``): the oracle the core's observations are checked against, bit
-for bit, in ``tests/envs/test_task_features.py``."""
+for bit, in ``tests/envs/test_task_features.py``, with its numpy planner (:func:`next_cells`,
+:func:`assumed_open_sides`, :func:`planned_waypoints`)."""
 
 from __future__ import annotations
 
@@ -11,11 +12,119 @@ import numpy as np
 import numpy.typing as npt
 
 from mazesim._core import World
-from mazesim.envs.navigation import NavigationFeatures, _waypoints, planned_waypoints
-from mazesim.maze import EAST, NORTH, SOUTH, WEST, CellMaze, PathDistanceTable, assumed_open_sides
+from mazesim.envs.navigation import NavigationFeatures, _waypoints
+from mazesim.errors import InvalidArgumentError
+from mazesim.maze import (
+    EAST,
+    NORTH,
+    SOUTH,
+    WEST,
+    CellMaze,
+    PathDistanceTable,
+    _inside,
+    breadth_first_distances,
+)
 
 _VISITS_SEEN = 3.0
 _SIDES = 4
+#: The (column, row) step of each direction (row 0 north).
+_STEP = {EAST: (1, 0), NORTH: (0, -1), WEST: (-1, 0), SOUTH: (0, 1)}
+
+
+def next_cells(
+    open_sides: npt.NDArray[np.bool_], targets: npt.NDArray[np.int64]
+) -> npt.NDArray[np.int64]:
+    """The way to a target cell in K mazes of one shape.
+
+    Args:
+        open_sides: (K, rows, cols, 4) open sides, as for ``mazesim.maze.breadth_first_distances``.
+        targets: (K, 2) the (column, row) target cell of each maze.
+
+    Returns:
+        (K, rows, cols, 2): the (column, row) of the next cell on a shortest path from each cell
+        to its maze's target: across the first open side in direction order whose neighbour is
+        one step nearer; -1, -1 in the target and in the cells that cannot reach it.
+    """
+    count, rows, cols, _ = open_sides.shape
+    steps = breadth_first_distances(open_sides, targets)
+    around = np.full((count, rows + 2, cols + 2), -2, dtype=np.int64)
+    around[:, 1:-1, 1:-1] = steps
+    step = np.array([_STEP[direction] for direction in range(_SIDES)])  # (column, row) steps
+    neighbours = np.stack(
+        [around[:, 1 + r : 1 + r + rows, 1 + c : 1 + c + cols] for c, r in step], axis=-1
+    )
+    nearer = open_sides & (neighbours == steps[..., None] - 1) & (steps[..., None] > 0)
+    direction = nearer.argmax(axis=-1)
+    row, column = np.indices((rows, cols))
+    following = np.stack((column, row), axis=-1)[None] + step[direction]
+    following[~nearer.any(axis=-1)] = -1
+    return following
+
+
+def assumed_open_sides(
+    open_sides: npt.NDArray[np.bool_], visited: npt.NDArray[np.bool_]
+) -> npt.NDArray[np.bool_]:
+    """The open sides of K mazes as robots that have visited some of their cells know them.
+
+    The sides of a visited cell are as they are (the robot saw them from inside, and so the side
+    its neighbour shares with it); every other side is assumed open (the free-space assumption
+    of a mapping robot); the grid's edge is known to be walled.
+
+    Args:
+        open_sides: (K, rows, cols, 4) the true open sides (``CellMaze.open_sides``).
+        visited: (K, rows, cols) the cells each robot has been in.
+
+    Raises:
+        InvalidArgumentError: ``visited`` is not of the mazes' shape.
+    """
+    if visited.shape != open_sides.shape[:3]:
+        raise InvalidArgumentError(
+            f"expected visited cells of shape {open_sides.shape[:3]}, found shape {visited.shape}"
+        )
+    count, rows, cols, _ = open_sides.shape
+    around = np.zeros((count, rows + 2, cols + 2), dtype=bool)
+    around[:, 1:-1, 1:-1] = visited
+    seen = np.stack(
+        [
+            visited | around[:, 1 + r : 1 + r + rows, 1 + c : 1 + c + cols]
+            for c, r in (_STEP[direction] for direction in range(_SIDES))
+        ],
+        axis=-1,
+    )
+    return (open_sides | ~seen) & _inside(rows, cols)
+
+
+def planned_waypoints(
+    open_sides: npt.NDArray[np.bool_],
+    goal_cells: npt.NDArray[np.int64],
+    goals: npt.NDArray[np.float64],
+    origins: npt.NDArray[np.float64],
+    sizes: npt.NDArray[np.float64],
+) -> npt.NDArray[np.float64]:
+    """The next waypoint of every cell of K mazes of one shape on a shortest path to their goals.
+
+    Args:
+        open_sides: (K, rows, cols, 4) the open sides the path may take (the true ones, or
+            :func:`assumed_open_sides`).
+        goal_cells: (K, 2) the (column, row) goal cell of each maze.
+        goals: (K, 2) the goal point (x, y) of each maze.
+        origins: (K, 2) the south-west corner of each grid.
+        sizes: (K,) the cell size of each maze.
+
+    Returns:
+        (K, rows * cols, 2) waypoints (x, y), cells row-major from the north-west: the centre of
+        the next cell (:func:`next_cells`: the open neighbour nearest the goal, the
+        first in direction order on a tie), the goal point in the goal cell and in cells from
+        which it cannot be reached.
+    """
+    count, rows, cols, _ = open_sides.shape
+    following = next_cells(open_sides, goal_cells).reshape(count, rows * cols, 2)
+    points = np.empty((count, rows * cols, 2))
+    points[..., 0] = origins[:, None, 0] + (following[..., 0] + 0.5) * sizes[:, None]
+    points[..., 1] = origins[:, None, 1] + (rows - following[..., 1] - 0.5) * sizes[:, None]
+    nowhere = following[..., 0] < 0
+    points[nowhere] = np.broadcast_to(goals[:, None, :], points.shape)[nowhere]
+    return points
 
 
 class NumpyNavigationFeatures:

@@ -4,8 +4,7 @@ A :class:`CellMaze` wraps :meth:`mazesim.World.cell_maze` of a ``[grid]`` world.
 ``(column, row)`` with row 0 on the north edge; directions are numbered counter-clockwise from
 east, so direction ``d`` has the heading ``d * pi / 2``: 0 east, 1 north, 2 west, 3 south. This
 is the package's only direction convention and :func:`breadth_first_distances` its only maze
-breadth-first search (:meth:`CellMaze.distances_from` for one maze, :func:`next_cells` for the
-way, both for many mazes at once).
+breadth-first search (:meth:`CellMaze.distances_from` for one maze, many mazes at once).
 
 Training reads the maze (the learner never does): where the doors are, which way a turn leads,
 and how far the goal is. :class:`GoalDistance` is the shortest-path distance to the goal that the
@@ -34,13 +33,11 @@ __all__ = [
     "DoorApproach",
     "GoalDistance",
     "PathDistanceTable",
-    "assumed_open_sides",
     "blocked_start",
     "breadth_first_distances",
     "checkpoint_ids",
     "looks_like_grid_map",
     "navigator_problems",
-    "next_cells",
     "refuse_blocked_start",
     "world_hash",
     "world_source",
@@ -434,69 +431,6 @@ def breadth_first_distances(
                     queue.append(there)
         distances[maze] = distance
     return distances.reshape(count, rows, cols)
-
-
-def next_cells(
-    open_sides: npt.NDArray[np.bool_], targets: npt.NDArray[np.int64]
-) -> npt.NDArray[np.int64]:
-    """The way to a target cell in K mazes of one shape.
-
-    Args:
-        open_sides: (K, rows, cols, 4) open sides, as for :func:`breadth_first_distances`.
-        targets: (K, 2) the (column, row) target cell of each maze.
-
-    Returns:
-        (K, rows, cols, 2): the (column, row) of the next cell on a shortest path from each cell
-        to its maze's target: across the first open side in direction order whose neighbour is
-        one step nearer; -1, -1 in the target and in the cells that cannot reach it.
-    """
-    count, rows, cols, _ = open_sides.shape
-    steps = breadth_first_distances(open_sides, targets)
-    around = np.full((count, rows + 2, cols + 2), -2, dtype=np.int64)
-    around[:, 1:-1, 1:-1] = steps
-    step = np.array([_STEP[direction] for direction in range(_SIDES)])  # (column, row) steps
-    neighbours = np.stack(
-        [around[:, 1 + r : 1 + r + rows, 1 + c : 1 + c + cols] for c, r in step], axis=-1
-    )
-    nearer = open_sides & (neighbours == steps[..., None] - 1) & (steps[..., None] > 0)
-    direction = nearer.argmax(axis=-1)
-    row, column = np.indices((rows, cols))
-    following = np.stack((column, row), axis=-1)[None] + step[direction]
-    following[~nearer.any(axis=-1)] = -1
-    return following
-
-
-def assumed_open_sides(
-    open_sides: npt.NDArray[np.bool_], visited: npt.NDArray[np.bool_]
-) -> npt.NDArray[np.bool_]:
-    """The open sides of K mazes as robots that have visited some of their cells know them.
-
-    The sides of a visited cell are as they are (the robot saw them from inside, and so the side
-    its neighbour shares with it); every other side is assumed open (the free-space assumption
-    of a mapping robot); the grid's edge is known to be walled.
-
-    Args:
-        open_sides: (K, rows, cols, 4) the true open sides (:meth:`CellMaze.open_sides`).
-        visited: (K, rows, cols) the cells each robot has been in.
-
-    Raises:
-        InvalidArgumentError: ``visited`` is not of the mazes' shape.
-    """
-    if visited.shape != open_sides.shape[:3]:
-        raise InvalidArgumentError(
-            f"expected visited cells of shape {open_sides.shape[:3]}, found shape {visited.shape}"
-        )
-    count, rows, cols, _ = open_sides.shape
-    around = np.zeros((count, rows + 2, cols + 2), dtype=bool)
-    around[:, 1:-1, 1:-1] = visited
-    seen = np.stack(
-        [
-            visited | around[:, 1 + r : 1 + r + rows, 1 + c : 1 + c + cols]
-            for c, r in (_STEP[direction] for direction in range(_SIDES))
-        ],
-        axis=-1,
-    )
-    return (open_sides | ~seen) & _inside(rows, cols)
 
 
 def _inside(rows: int, cols: int) -> npt.NDArray[np.bool_]:

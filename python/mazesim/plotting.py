@@ -14,7 +14,7 @@ from __future__ import annotations
 import math
 import os
 from collections.abc import Sequence
-from typing import TYPE_CHECKING, cast
+from typing import TYPE_CHECKING
 
 import numpy as np
 import numpy.typing as npt
@@ -28,6 +28,7 @@ from matplotlib.path import Path
 
 from mazesim._figures import save_png
 from mazesim.errors import InvalidArgumentError
+from mazesim.render.topdown import _number, _pair
 
 if TYPE_CHECKING:
     from matplotlib.artist import Artist
@@ -94,17 +95,6 @@ def _background_reflectance(world: World) -> float:
     """The reflectance of the bare floor, sampled well outside everything in the world."""
     xmin, ymin, _, _ = world.bounds
     return float(world.floor_reflectance(xmin - 1.0, ymin - 1.0))
-
-
-def _number(value: object) -> float:
-    """A number of a paint or checkpoint dict."""
-    return float(value)  # type: ignore[arg-type]
-
-
-def _pair(value: object) -> tuple[float, float]:
-    """An (x, y) pair of a paint or checkpoint dict."""
-    first, second = cast("Sequence[float]", value)
-    return float(first), float(second)
 
 
 def _paint_path(region: dict[str, object]) -> Path | None:
@@ -316,13 +306,13 @@ def draw_bodies(ax: Axes, world: World) -> list[Artist]:
     (none without bodies)."""
     bodies = world.bodies()
     for body in bodies:
-        cx, cy = (float(v) for v in cast("Sequence[float]", body["center"]))
+        cx, cy = _pair(body["center"])
         if body.get("shape") == "circle":
-            radius = float(cast(float, body["radius"]))
+            radius = _number(body["radius"])
             ax.add_patch(Circle((cx, cy), radius, fill=False, edgecolor=BODY_COLOR, zorder=6))
             continue
-        sx, sy = (float(v) / 2.0 for v in cast("Sequence[float]", body["size"]))
-        yaw = float(cast(float, body.get("yaw", 0.0)))
+        sx, sy = (v / 2.0 for v in _pair(body["size"]))
+        yaw = _number(body.get("yaw", 0.0))
         c, s = math.cos(yaw), math.sin(yaw)
         corners = [
             (cx + c * dx - s * dy, cy + s * dx + c * dy)

@@ -19,9 +19,10 @@ import mazesim  # noqa: E402
 import mazesim.maze as directions  # noqa: E402
 from env_worlds import TRAP  # noqa: E402
 from mazesim.envs import EPuckMazeEnv  # noqa: E402
-from mazesim.envs.navigation import _waypoints, planned_waypoints  # noqa: E402
+from mazesim.envs.navigation import _waypoints  # noqa: E402
 from mazesim.errors import InvalidArgumentError  # noqa: E402
-from mazesim.maze import CellMaze, PathDistanceTable, assumed_open_sides  # noqa: E402
+from mazesim.maze import CellMaze, PathDistanceTable  # noqa: E402
+from navigation_oracle import assumed_open_sides, planned_waypoints  # noqa: E402
 
 #: Cells of TRAP (column, row from the north).
 START, GOAL, SOUTH_WEST = (1, 1), (0, 0), (0, 1)

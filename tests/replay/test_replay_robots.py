@@ -17,7 +17,7 @@ from mazesim.cli import main
 from mazesim.errors import RunFormatError
 from mazesim.replay import load_run, save_run
 from mazesim.replay.html import scene_of
-from mazesim.replay.recorder import SimulatorRecorder
+from mazesim.replay.recorder import FleetRecorder
 from mazesim.replay.run import run_from_json
 
 
@@ -69,11 +69,11 @@ def test_the_replay_scene_lists_every_robot(three: dict[str, Path]) -> None:
 
 def test_a_run_of_one_robot_is_still_version_1_0_with_the_same_fields() -> None:
     simulator = mazesim.Simulator(mazesim.load_world("arena"), seed=1)
-    recorder = SimulatorRecorder(simulator, "wander", seed=1)
-    recorder.capture()
-    recorder.acted(1.0, 2.0)
+    recorder = FleetRecorder.of_simulator(simulator, "wander", seed=1)
+    recorder.capture_simulator(simulator)
+    recorder.acted(0, 1.0, 2.0)
     simulator.step(1.0, 2.0)
-    recorder.capture()
+    recorder.capture_simulator(simulator)
     values = recorder.run("done").as_json()
     assert values["version"] == "1.0"
     assert list(values) == [
@@ -186,8 +186,6 @@ def test_the_video_draws_every_robot_in_its_own_colour(three: dict[str, Path]) -
 
 
 def test_a_robots_rays_stop_at_the_other_robots_body() -> None:
-    from mazesim.replay.recorder import FleetRecorder
-
     world = mazesim.World.from_toml(
         'format = "mazesim-world"\nversion = 1\n'
         '[[robots]]\nname = "west"\nx = -0.05\ny = 0.0\n'

@@ -18,22 +18,22 @@ from mazesim.errors import MazesimError, RunFormatError
 from mazesim.learn.subtasks import SUBTASK_NAMES
 from mazesim.replay import FORMAT_VERSION, RecordedRun, load_run, save_run
 from mazesim.replay.html import replay_html, write_html
-from mazesim.replay.recorder import SimulatorRecorder
+from mazesim.replay.recorder import FleetRecorder
 from mazesim.replay.run import MAX_RUN_BYTES
 
 
 def long_run(steps: int = 4000) -> RecordedRun:
     """The seed robot wandering ``steps`` control steps in seed-maze, every field filled."""
     simulator = mazesim.Simulator(mazesim.load_world("seed-maze"), robot="seed", seed=3)
-    recorder = SimulatorRecorder(simulator, "wander", seed=3)
+    recorder = FleetRecorder.of_simulator(simulator, "wander", seed=3)
     rng = np.random.default_rng(3)
     for _ in range(steps):
         left, right = rng.uniform(-3.0, 6.28, size=2)
-        recorder.capture()
-        recorder.acted(float(left), float(right))
-        recorder.recorder.set_action(code="00", subtask=int(rng.integers(4)))
+        recorder.capture_simulator(simulator)
+        recorder.acted(0, float(left), float(right))
+        recorder.recorders[0].set_action(code="00", subtask=int(rng.integers(4)))
         simulator.step(float(left), float(right))
-    recorder.capture()
+    recorder.capture_simulator(simulator)
     run = recorder.run("time up")
     run.subtask_names = list(SUBTASK_NAMES)
     return run

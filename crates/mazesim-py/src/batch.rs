@@ -36,9 +36,6 @@ pub struct PyBatch {
     ground_width: usize,
 }
 
-/// A `Batch` setter of one row of three values per listed environment (or per robot of each).
-type SetRowsAt = fn(&mut Batch, &[usize], &[f64]) -> mazesim_core::Result<()>;
-
 /// Most control steps one `run` call takes.
 const MAX_RUN_STEPS: usize = 1 << 40;
 
@@ -169,19 +166,6 @@ impl PyBatch {
         shape[0] = m;
         let rows = copied::<f64>(values, what, "float64", &shape)?;
         Ok((env_indices(&indices, self.n)?, rows))
-    }
-
-    /// Applies `rows` to the environments `indices` with `one` (a robot per environment) or
-    /// `several` (a batch of worlds of several robots).
-    fn set_rows_at(
-        &self,
-        indices: &[usize],
-        rows: &[f64],
-        one: SetRowsAt,
-        several: SetRowsAt,
-    ) -> PyResult<()> {
-        let apply = if self.robots > 1 { several } else { one };
-        self.inner.with(|b| apply(b, indices, rows))?.py()
     }
 }
 
@@ -537,12 +521,7 @@ impl PyBatch {
         enter(|| {
             let rows = copied::<f64>(starts, "starts", "float64", &self.shape(&[3]))?;
             let everyone: Vec<usize> = (0..self.n).collect();
-            self.set_rows_at(
-                &everyone,
-                &rows,
-                Batch::set_starts_at,
-                Batch::set_swarm_starts_at,
-            )
+            self.inner.with(|b| b.set_starts_at(&everyone, &rows))?.py()
         })
     }
 
@@ -587,12 +566,7 @@ impl PyBatch {
     fn set_starts_at(&self, envs: &Bound<'_, PyAny>, starts: &Bound<'_, PyAny>) -> PyResult<()> {
         enter(|| {
             let (indices, rows) = self.listed_rows(envs, starts, "starts")?;
-            self.set_rows_at(
-                &indices,
-                &rows,
-                Batch::set_starts_at,
-                Batch::set_swarm_starts_at,
-            )
+            self.inner.with(|b| b.set_starts_at(&indices, &rows))?.py()
         })
     }
 
@@ -603,12 +577,7 @@ impl PyBatch {
     fn set_goals_at(&self, envs: &Bound<'_, PyAny>, goals: &Bound<'_, PyAny>) -> PyResult<()> {
         enter(|| {
             let (indices, rows) = self.listed_rows(envs, goals, "goals")?;
-            self.set_rows_at(
-                &indices,
-                &rows,
-                Batch::set_goals_at,
-                Batch::set_swarm_goals_at,
-            )
+            self.inner.with(|b| b.set_goals_at(&indices, &rows))?.py()
         })
     }
 

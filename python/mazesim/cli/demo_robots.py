@@ -53,8 +53,7 @@ def run_robots_demo(
     and writes the picture, the summary and the views asked for."""
     from mazesim.controllers import AvoidCollision
     from mazesim.plotting import save_robot_paths_png
-    from mazesim.replay.recorder import FleetRecorder
-    from mazesim.replay.views import FleetLiveView, recording_requested, write_views, written_lines
+    from mazesim.replay.views import SimulatorWatch, written_lines
 
     world = simulator.world
     names = list(simulator.robot_names)
@@ -64,16 +63,7 @@ def run_robots_demo(
     controllers = [AvoidCollision(max_speed=profile.max_wheel_speed) for profile in profiles]
     make_output_folder(args.out)
     steps = max(1, math.ceil(seconds * 1000.0 / simulator.control_step_ms - 1e-9))
-    recorder = (
-        FleetRecorder.of_simulator(simulator, "avoid-collision", args.seed)
-        if recording_requested(args)
-        else None
-    )
-    live = (
-        FleetLiveView(world, profiles[0], simulator.control_step_ms, f"mazesim: {world.name}")
-        if getattr(args, "live", False)
-        else None
-    )
+    watch = SimulatorWatch(args, simulator, "avoid-collision", args.seed)
     paths = np.empty((count, steps + 1, 2), dtype=np.float64)
     paths[:, 0] = simulator.poses()[:, :2]
     commands = np.zeros((count, 2), dtype=np.float64)
@@ -83,19 +73,11 @@ def run_robots_demo(
             for index in range(count):
                 readings = simulator.distance_sensors(robot_index=index)
                 commands[index] = controllers[index](readings[columns[index]])
-            if recorder is not None:
-                recorder.capture_simulator(simulator)
-                for index in range(count):
-                    recorder.acted(index, commands[index, 0], commands[index, 1])
-            if live is not None:
-                _show(live, simulator)
+            watch.before_robots_step(commands)
             simulator.step_robots(commands)
             paths[:, step] = simulator.poses()[:, :2]
             progress("simulating", step, steps)
     wall_clock = time.perf_counter() - started
-    if live is not None:
-        _show(live, simulator)
-        live.close()
     states = [simulator.robot_state(i) for i in range(count)]
     summary: dict[str, Any] = {
         "world": world.name,
@@ -126,10 +108,7 @@ def run_robots_demo(
     summary_path = os.path.join(args.out, "summary.json")
     with atomic_file(summary_path) as handle:
         handle.write((json.dumps(summary, indent=2) + "\n").encode("utf-8"))
-    views: list[str] = []
-    if recorder is not None:
-        recorder.capture_simulator(simulator)
-        views = write_views(args, recorder.run(f"{simulator.time:.0f} s up"))
+    views = watch.finish(f"{simulator.time:.0f} s up")
     out.write(
         f"world              {world.name} ({count} robots, seed {args.seed})\n"
         f"simulated time     {simulator.time:.2f} s ({simulator.steps} steps)\n"
@@ -140,13 +119,3 @@ def run_robots_demo(
         )
     out.write(written_lines(args, picture, [picture, summary_path, *views]))
     return 0
-
-
-def _show(live: Any, simulator: Simulator) -> None:
-    """Shows every robot of ``simulator`` as it is now in the live window."""
-    states = [simulator.robot_state(i) for i in range(simulator.num_robots)]
-    live.show(
-        [tuple(float(v) for v in state["pose"]) for state in states],
-        [bool(state["colliding"]) for state in states],
-        f"t {simulator.time:6.2f} s   step {simulator.steps}",
-    )

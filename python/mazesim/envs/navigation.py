@@ -29,11 +29,10 @@ Observations (``observation=``)
     ``"plan"``: ``"explore"`` plus, after the goal, the next waypoint (forward, left, in cells) of
     the shortest path to the goal through the maze **as the robot knows it in this episode**:
     the sides of the cells it has visited are as they are, every side it has not seen is assumed
-    open (the free-space assumption of a mapping robot, as in D* Lite), the outer wall is known
-    (:func:`mazesim.maze.assumed_open_sides`). The path is planned again whenever the robot
-    enters a cell for the first time (the only moment its map changes), by a breadth-first search
-    in the core (the maze model's :func:`~mazesim.maze.next_cells`, done there per environment
-    and step as every feature here: :class:`mazesim._core.TaskFeatures`); the waypoint is the
+    open (the free-space assumption of a mapping robot, as in D* Lite), the outer wall is known.
+    The path is planned again whenever the robot enters a cell for the first time (the only
+    moment its map changes), by a breadth-first search in the core (per environment and step as
+    every feature here: :class:`mazesim._core.TaskFeatures`); the waypoint is the
     centre of the neighbouring cell on that path, or the goal in the goal cell. Following it the
     robot reaches the goal of any maze whose goal can be reached: each plan either gets there or
     leads into a cell not visited yet.
@@ -93,7 +92,6 @@ from mazesim.maze import (
     WEST,
     CellMaze,
     PathDistanceTable,
-    next_cells,
 )
 
 __all__ = [
@@ -104,7 +102,6 @@ __all__ = [
     "distance_table",
     "draw_start_and_goal",
     "navigation_features",
-    "planned_waypoints",
     "start_and_goal_cells",
 ]
 
@@ -396,39 +393,6 @@ class NavigationFeatures:
         """(N, width) observations from (N, sensor_width) raw readings, (N, 3) poses and the
         (N, 2) previous actions as wheel speed fractions (float32 arrays)."""
         return self._core.observe(readings, poses, previous)
-
-
-def planned_waypoints(
-    open_sides: npt.NDArray[np.bool_],
-    goal_cells: npt.NDArray[np.int64],
-    goals: npt.NDArray[np.float64],
-    origins: npt.NDArray[np.float64],
-    sizes: npt.NDArray[np.float64],
-) -> npt.NDArray[np.float64]:
-    """The next waypoint of every cell of K mazes of one shape on a shortest path to their goals.
-
-    Args:
-        open_sides: (K, rows, cols, 4) the open sides the path may take (the true ones, or
-            :func:`~mazesim.maze.assumed_open_sides`).
-        goal_cells: (K, 2) the (column, row) goal cell of each maze.
-        goals: (K, 2) the goal point (x, y) of each maze.
-        origins: (K, 2) the south-west corner of each grid.
-        sizes: (K,) the cell size of each maze.
-
-    Returns:
-        (K, rows * cols, 2) waypoints (x, y), cells row-major from the north-west: the centre of
-        the next cell (:func:`~mazesim.maze.next_cells`: the open neighbour nearest the goal, the
-        first in direction order on a tie), the goal point in the goal cell and in cells from
-        which it cannot be reached.
-    """
-    count, rows, cols, _ = open_sides.shape
-    following = next_cells(open_sides, goal_cells).reshape(count, rows * cols, 2)
-    points = np.empty((count, rows * cols, 2))
-    points[..., 0] = origins[:, None, 0] + (following[..., 0] + 0.5) * sizes[:, None]
-    points[..., 1] = origins[:, None, 1] + (rows - following[..., 1] - 0.5) * sizes[:, None]
-    nowhere = following[..., 0] < 0
-    points[nowhere] = np.broadcast_to(goals[:, None, :], points.shape)[nowhere]
-    return points
 
 
 def _waypoints(table: PathDistanceTable) -> npt.NDArray[np.float64]:

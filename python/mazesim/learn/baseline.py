@@ -30,7 +30,7 @@ from mazesim._seeding import stream
 from mazesim.actions import ACTION_CODES
 from mazesim.episodes import MAX_STEPS, EpisodeBatch
 from mazesim.learn import qlearning
-from mazesim.learn.discretise import NUM_SENSORS, NUM_STATES, distances_and_levels
+from mazesim.learn.discretise import NUM_SENSORS, NUM_STATES, distances_and_levels, encode_state
 from mazesim.learn.policy import StepRecord
 from mazesim.maze import checkpoint_ids
 
@@ -40,8 +40,6 @@ __all__ = [
     "flat_table_rows",
     "train_flat",
 ]
-
-_PLACE = 4 ** np.arange(NUM_SENSORS, dtype=np.int64)
 
 
 @dataclass(frozen=True)
@@ -134,7 +132,7 @@ class FlatNavigator:
         self.context[seen] = 1 + 2 * place[seen] + (event[seen] < 0)
         record = self.record
         record.levels = np.asarray(levels, dtype=np.int64)
-        record.state = record.levels @ _PLACE
+        record.state = np.asarray(encode_state(record.levels))
         record.event = event
         return record.state + NUM_STATES * self.context
 

@@ -36,7 +36,7 @@ from mazesim._core import EpisodeLimits, RunSettings, TabularSettings
 from mazesim.actions import ACTION_CODES
 from mazesim.episodes import EpisodeBatch, EpisodeResult, EpisodeSchedule, Watcher
 from mazesim.errors import InvalidArgumentError, _shown
-from mazesim.learn.discretise import NUM_SENSORS, NUM_STATES, distances_and_levels
+from mazesim.learn.discretise import NUM_SENSORS, NUM_STATES, distances_and_levels, encode_state
 from mazesim.learn.policy import HierarchicalPolicy, StepRecord
 from mazesim.learn.subtasks import NUM_SUBTASKS, SUBTASK_ACTIONS
 
@@ -46,7 +46,6 @@ __all__ = ["STRETCH_STEPS", "StretchReplay", "run_navigator_episodes", "stretche
 STRETCH_STEPS = 256
 #: The episode number a :class:`StretchReplay` shows for robots that do not step.
 _NOT_SHOWN = np.iinfo(np.int64).max
-_PLACE = 4 ** np.arange(NUM_SENSORS, dtype=np.int64)
 
 
 class TracedNavigator:
@@ -170,7 +169,7 @@ def _record_of(
     observations it acted on."""
     record = StepRecord(observations.shape[0])
     record.distances_cm, record.levels = distances_and_levels(observations[:, :NUM_SENSORS])
-    record.state = record.levels @ _PLACE
+    record.state = np.asarray(encode_state(record.levels))
     record.subtask = trace["subtasks"][step].astype(np.int64)
     record.phase = trace["phases"][step].astype(np.int64)
     record.action = trace["actions"][step].astype(np.int64)

@@ -398,7 +398,7 @@ def _disc_offsets(radius_px: float) -> tuple[npt.NDArray[np.intp], npt.NDArray[n
 
 
 def _number(value: object) -> float:
-    """A number from the core's description of a world."""
+    """A number from the core's description of a world (its paint, checkpoints and bodies)."""
     return float(value)  # type: ignore[arg-type]
 
 

@@ -2,12 +2,12 @@
 
 An :class:`EpisodeRecorder` collects the frames of one episode (pose, readings, contact,
 checkpoint event, and the ray lengths it works out from the pose) and what the controller did
-from each; :class:`SimulatorRecorder` does this for a :class:`mazesim.Simulator` stepped by a
-command (``mazesim demo``, ``mazesim webots run``) and returns the :class:`RecordedRun`;
-:class:`FleetRecorder` records every robot of a world of several robots, one track each. The
-recorder of the hierarchical navigator is :mod:`mazesim.replay.navigator`. A run whose walls a
-Webots supervisor changes is told of each change (``follow``): the run holds the walls from
-that frame on, and the rays recorded from then meet them.
+from each; :class:`FleetRecorder` does this for every robot of a :class:`mazesim.Simulator`
+stepped by a command (``mazesim demo``, ``mazesim webots run``), one track each (a run of one
+robot when the world holds one), and returns the :class:`RecordedRun`. The recorder of the
+hierarchical navigator is :mod:`mazesim.replay.navigator`. A run whose walls a Webots supervisor
+changes is told of each change (``follow``): the run holds the walls from that frame on, and the
+rays recorded from then meet them.
 """
 
 from __future__ import annotations
@@ -31,7 +31,6 @@ if TYPE_CHECKING:
 __all__ = [
     "EpisodeRecorder",
     "FleetRecorder",
-    "SimulatorRecorder",
     "reading_scale",
     "table_levels",
 ]
@@ -217,62 +216,8 @@ def _padded(values: list[Any], length: int, filler: object) -> list[Any]:
     return [*values[:length], *([filler] * max(0, length - len(values)))]
 
 
-class SimulatorRecorder:
-    """Records one :class:`mazesim.Simulator` as a command steps it.
-
-    Call :meth:`capture` at the start and after every step, and :meth:`acted` with the wheel
-    speeds the controller set from the last captured frame.
-
-    Args:
-        simulator: The simulator.
-        controller: What drives the robot (``"avoid-collision"``, a controller file...).
-        seed: The run's seed.
-    """
-
-    def __init__(self, simulator: Simulator, controller: str, seed: int) -> None:
-        self.simulator = simulator
-        self.controller = controller
-        self.seed = seed
-        #: The world at the start (a supervisor's changes are :meth:`follow`'s).
-        self.world = simulator.world
-        self.recorder = EpisodeRecorder(self.world, simulator.robot)
-        self._followed = self.world
-
-    def follow(self, world: World) -> None:
-        """Records the walls of ``world`` from the next frame on, when it is not the world
-        followed (a supervisor moved, imported or removed walls)."""
-        if world is not self._followed:
-            self._followed = world
-            self.recorder.walls_changed(world.wall_boxes())
-
-    def capture(self) -> None:
-        """Adds a frame of the simulator's current state."""
-        simulator = self.simulator
-        readings = np.concatenate((simulator.distance_sensors(), simulator.ground_sensors()))
-        event = simulator.last_crossing if self.recorder.frames else 0
-        self.recorder.add_frame(simulator.pose, readings, simulator.colliding, event)
-
-    def acted(self, left: float, right: float) -> None:
-        """Records the wheel speeds set from the last frame."""
-        self.recorder.set_action(wheel_speeds=(left, right))
-
-    def run(self, outcome: str = "") -> RecordedRun:
-        """The recorded run."""
-        robot = self.simulator.robot
-        return RecordedRun(
-            world=self.world,
-            robot=robot.name,
-            controller=self.controller,
-            seed=self.seed,
-            control_step_ms=float(self.simulator.control_step_ms),
-            episodes=[self.recorder.episode(outcome)],
-            reading_scale=reading_scale(robot),
-            own_profile=robot,
-        )
-
-
 class FleetRecorder:
-    """Records every robot of a world of several robots, one :class:`EpisodeRecorder` each.
+    """Records every robot of a world, one :class:`EpisodeRecorder` each.
 
     Call :meth:`capture` (or :meth:`capture_simulator` for one simulator of every robot) at the
     start and after every step, and :meth:`acted` with each robot's wheel speeds.

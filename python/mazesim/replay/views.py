@@ -12,11 +12,16 @@ from __future__ import annotations
 
 import argparse
 import os
-from typing import Any, TextIO
+from collections.abc import Sequence
+from typing import TYPE_CHECKING, Any, TextIO
 
 from mazesim._core import RobotProfile, Simulator, World
 from mazesim._paths import output_file, shell_command
 from mazesim.replay.run import RecordedRun
+
+if TYPE_CHECKING:
+    import numpy as np
+    import numpy.typing as npt
 
 __all__ = [
     "FleetLiveView",
@@ -155,41 +160,21 @@ class SimulatorWatch:
     def __init__(
         self, args: argparse.Namespace, simulator: Simulator, controller: str, seed: int
     ) -> None:
-        from mazesim.replay.recorder import FleetRecorder, SimulatorRecorder
+        from mazesim.replay.recorder import FleetRecorder
 
         self.args = args
         self.simulator = simulator
-        several = simulator.num_robots > 1
-        self.recorder: Any = None
+        self.recorder: FleetRecorder | None = None
         if recording_requested(args):
-            self.recorder = (
-                FleetRecorder.of_simulator(simulator, controller, seed)
-                if several
-                else SimulatorRecorder(simulator, controller, seed)
-            )
-        self.live: Any = None
-        self.renderer: Any = None
-        self.fleet_view: FleetLiveView | None = None
-        if getattr(args, "live", False) and several:
-            self.live = self.fleet_view = FleetLiveView(
+            self.recorder = FleetRecorder.of_simulator(simulator, controller, seed)
+        self.live: FleetLiveView | None = None
+        if getattr(args, "live", False):
+            self.live = FleetLiveView(
                 simulator.world,
                 simulator.robot,
                 simulator.control_step_ms,
                 f"mazesim: {simulator.world.name}",
             )
-        elif getattr(args, "live", False):
-            from mazesim.render.live import LiveView
-            from mazesim.render.topdown import TopDownRenderer
-
-            self.live = LiveView(
-                f"mazesim: {simulator.world.name}", simulator.control_step_ms / 1000.0
-            )
-            robot = simulator.robot
-            if not self.live.headless:
-                self.renderer = TopDownRenderer(
-                    simulator.world, robot, ray_length=robot.distance_sensor_range
-                )
-            self.trail: list[tuple[float, float]] = []
         #: The world whose walls the window draws, and what they were made of when it last
         #: took them (:meth:`follow`).
         self.world = simulator.world if self.live is not None else None
@@ -213,57 +198,34 @@ class SimulatorWatch:
         if self.live is None:
             return
         self.world = world
-        if self.fleet_view is not None:
-            self.fleet_view.follow(world)
-        elif self.renderer is not None:
-            from mazesim.render.topdown import TopDownRenderer
-
-            robot = self.simulator.robot
-            self.renderer = TopDownRenderer(world, robot, ray_length=robot.distance_sensor_range)
+        self.live.follow(world)
 
     def before_step(self, left: float, right: float) -> None:
-        """Records the frame before a step and the wheel speeds it runs with; shows it live."""
+        """Records the frame before a step and the wheel speeds it runs with (robot 0's; the
+        others keep theirs); shows it live."""
+        simulator = self.simulator
+        kept = [simulator.robot_state(i)["wheel_speeds"] for i in range(1, simulator.num_robots)]
+        self.before_robots_step([(left, right), *kept])
+
+    def before_robots_step(
+        self, commands: Sequence[Sequence[float]] | npt.NDArray[np.float64]
+    ) -> None:
+        """Records the frame before a step and each robot's wheel speeds (left, right) in
+        ``commands``, in the simulator's order; shows it live."""
         if self.recorder is not None:
-            self._capture()
-            if not self.fleet:
-                self.recorder.acted(left, right)
-            else:
-                self.recorder.acted(0, left, right)
-                for index in range(1, self.simulator.num_robots):
-                    self.recorder.acted(index, *self.simulator.robot_state(index)["wheel_speeds"])
+            self.recorder.capture_simulator(self.simulator)
+            for index, (left, right) in enumerate(commands):
+                self.recorder.acted(index, float(left), float(right))
         self._show()
 
-    @property
-    def fleet(self) -> bool:
-        """Whether every robot of a world of several is recorded."""
-        return self.simulator.num_robots > 1
-
-    def _capture(self) -> None:
-        if self.fleet:
-            self.recorder.capture_simulator(self.simulator)
-        else:
-            self.recorder.capture()
-
     def _show(self) -> None:
-        if self.fleet_view is not None:
-            states = [self.simulator.robot_state(i) for i in range(self.simulator.num_robots)]
-            self.fleet_view.show(
-                [state["pose"] for state in states],
-                [bool(state["colliding"]) for state in states],
-                f"t {self.simulator.time:6.2f} s   step {self.simulator.steps}",
-            )
+        if self.live is None:
             return
-        if self.renderer is None:
-            return
-        x, y, yaw = self.simulator.pose
-        self.trail.append((x, y))
+        states = [self.simulator.robot_state(i) for i in range(self.simulator.num_robots)]
         self.live.show(
-            self.renderer.frame(
-                (x, y, yaw),
-                self.simulator.colliding,
-                trail=self.trail,
-                overlay=[f"t {self.simulator.time:6.2f} s   step {self.simulator.steps}"],
-            )
+            [state["pose"] for state in states],
+            [bool(state["colliding"]) for state in states],
+            f"t {self.simulator.time:6.2f} s   step {self.simulator.steps}",
         )
 
     def finish(self, outcome: str = "", title: str | None = None) -> list[str]:
@@ -273,7 +235,7 @@ class SimulatorWatch:
             self.live.close()
         if self.recorder is None:
             return []
-        self._capture()
+        self.recorder.capture_simulator(self.simulator)
         return write_views(self.args, self.recorder.run(outcome), title)
 
 
@@ -306,8 +268,8 @@ class DeferredWatch:
 
 
 class FleetLiveView:
-    """The live window of a run of several robots: robot 0 with its rays, the others each in a
-    colour of its own, every trail.
+    """The live window of a run: robot 0 with its rays, the others (in a world of several
+    robots) each in a colour of its own, every trail.
 
     Args:
         world: The world.

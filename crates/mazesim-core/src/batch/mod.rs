@@ -17,7 +17,8 @@ use std::time::{Duration, Instant};
 
 use crate::error::{Error, Result};
 use crate::robot::RobotProfile;
-use crate::simulator::{Rig, SimConfig, Simulator};
+use crate::simulator::{check_goal, Rig, SimConfig, Simulator};
+use crate::swarm::check_apart;
 use crate::world::World;
 
 /// Environments per chunk of work: enough to amortise taking it from the queue, few enough that
@@ -397,68 +398,80 @@ impl Batch {
         })
     }
 
-    /// Sets the start pose of environments `envs` for their later resets from `starts`, one row
-    /// of x, y, yaw per listed environment (the others keep theirs). Every index and row is
-    /// checked before any is applied: a bad one changes nothing, and the error names its
-    /// environment.
+    /// Sets the start of every robot of environments `envs` for their later resets, from
+    /// `starts`: for each listed environment, one row of x, y, yaw per robot (`(M, 3)` with one
+    /// robot per environment, `(M, robots, 3)` with several); the others keep theirs. Every
+    /// start must be clear of the walls and of the environment's other new starts; all are
+    /// checked before any is applied, and the error names the environment (and robot).
     pub fn set_starts_at(&mut self, envs: &[usize], starts: &[f64]) -> Result<()> {
         self.set_rows_at(
             envs,
             starts,
             "starts",
-            |env, [x, y, yaw]| env.check_start(x, y, yaw),
-            |env, [x, y, yaw]| env.set_start(x, y, yaw),
+            |group, k, rows| {
+                let at = |j: usize| [rows[3 * j], rows[3 * j + 1], rows[3 * j + 2]];
+                let [x, y, yaw] = at(k);
+                group[k].check_start(x, y, yaw)?;
+                check_apart(group, k, at(k), at, "start")
+            },
+            |robot, [x, y, yaw]| robot.set_start(x, y, yaw),
         )
     }
 
-    /// Sets the goal disc of environments `envs`, one row of x, y, radius (metres) per listed
-    /// environment, instead of their worlds' (the others keep theirs; `set_world` goes back to the
-    /// world's). Every index and row is checked before any is applied: a bad one changes nothing,
-    /// and the error names its environment.
+    /// Sets the goal disc of every robot of environments `envs`, from `goals`: for each listed
+    /// environment, one row of x, y, radius (metres) per robot, shaped as for
+    /// [`Batch::set_starts_at`], instead of their world's (the others keep theirs; `set_world`
+    /// goes back to the world's); checked before any is applied, as [`Batch::set_starts_at`].
     pub fn set_goals_at(&mut self, envs: &[usize], goals: &[f64]) -> Result<()> {
         self.set_rows_at(
             envs,
             goals,
             "goals",
-            |_, [x, y, radius]| crate::simulator::check_goal(x, y, radius),
-            |env, [x, y, radius]| env.set_goal(x, y, radius),
+            |_, k, rows| check_goal(rows[3 * k], rows[3 * k + 1], rows[3 * k + 2]),
+            |robot, [x, y, radius]| robot.set_goal(x, y, radius),
         )
     }
 
-    /// Applies one row of three values to each listed environment with `apply`, once `check` has
-    /// accepted every index and row (`what` names the rows in errors).
+    /// Applies one row of three values per robot of each listed environment with `apply`, once
+    /// `check` (given the environment's robots, a robot and the environment's rows) has accepted
+    /// every index and row (`what` names the rows in errors).
     fn set_rows_at(
         &mut self,
         envs: &[usize],
         rows: &[f64],
         what: &str,
-        check: impl Fn(&Simulator, [f64; 3]) -> Result<()>,
+        check: impl Fn(&[Simulator], usize, &[f64]) -> Result<()>,
         apply: impl Fn(&mut Simulator, [f64; 3]) -> Result<()>,
     ) -> Result<()> {
-        let n = self.envs.len();
-        if rows.len() != 3 * envs.len() {
+        let (m, r) = (envs.len(), self.robots);
+        if rows.len() != 3 * r * m {
+            let shape = match r {
+                1 => format!("({m}, 3), one row per listed environment"),
+                _ => format!("({m}, {r}, 3), a row per robot of each listed environment"),
+            };
             return Err(Error::InvalidArgument(format!(
-                "expected {what} of shape ({}, 3), one row per listed environment, found {} values",
-                envs.len(),
+                "expected {what} of shape {shape}, found {} values",
                 rows.len()
             )));
         }
-        let row_of = |row: &[f64]| [row[0], row[1], row[2]];
-        for (&i, row) in envs.iter().zip(rows.chunks_exact(3)) {
-            let env = self.envs.get(i).ok_or_else(|| {
-                Error::InvalidArgument(format!(
-                    "expected an environment index below {n}, found {i}"
-                ))
-            })?;
-            check(env, row_of(row)).map_err(|e| match e {
-                Error::InvalidArgument(m) => {
-                    Error::InvalidArgument(format!("environment {i}: {m}"))
-                }
-                other => other,
-            })?;
+        for (&e, env_rows) in envs.iter().zip(rows.chunks_exact(3 * r)) {
+            let group = self.group(e)?;
+            for k in 0..r {
+                check(&self.envs[group.clone()], k, env_rows).map_err(|error| match error {
+                    Error::InvalidArgument(m) if r == 1 => {
+                        Error::InvalidArgument(format!("environment {e}: {m}"))
+                    }
+                    Error::InvalidArgument(m) => {
+                        Error::InvalidArgument(format!("environment {e}, robot {k}: {m}"))
+                    }
+                    other => other,
+                })?;
+            }
         }
-        for (&i, row) in envs.iter().zip(rows.chunks_exact(3)) {
-            apply(&mut self.envs[i], row_of(row))?;
+        for (&e, env_rows) in envs.iter().zip(rows.chunks_exact(3 * r)) {
+            for (k, row) in env_rows.chunks_exact(3).enumerate() {
+                apply(&mut self.envs[e * r + k], [row[0], row[1], row[2]])?;
+            }
         }
         Ok(())
     }

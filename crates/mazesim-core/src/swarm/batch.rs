@@ -7,7 +7,7 @@ use std::sync::atomic::AtomicU64;
 use std::sync::Arc;
 
 use super::snapshot::{restored_robots, snapshot_robots};
-use super::{check_apart, make_robots, reset_robots, step_robots};
+use super::{make_robots, reset_robots, step_robots};
 use crate::batch::{
     check_actions, check_seeds, check_size, rigs_of, Batch, Helpers, StepOutputs, CHUNK_ENVS,
 };
@@ -16,7 +16,7 @@ use crate::error::{Error, Result};
 use crate::limits::MAX_ROBOTS;
 use crate::rng::Rng;
 use crate::robot::RobotProfile;
-use crate::simulator::{check_goal, Rig, SimConfig, Simulator};
+use crate::simulator::{Rig, SimConfig, Simulator};
 use crate::world::World;
 
 impl Batch {
@@ -212,7 +212,7 @@ impl Batch {
 
     /// The robots of environment `index` (a range of `envs`), or an error naming the valid
     /// indices.
-    fn group(&self, index: usize) -> Result<std::ops::Range<usize>> {
+    pub(crate) fn group(&self, index: usize) -> Result<std::ops::Range<usize>> {
         let (n, r) = (self.num_envs(), self.robots);
         if index >= n {
             return Err(Error::InvalidArgument(format!(
@@ -244,77 +244,6 @@ impl Batch {
             .collect();
         let (robots, _) = restored_robots(&self.envs[group.clone()], &names, snapshot)?;
         self.envs.splice(group, robots);
-        Ok(())
-    }
-
-    /// Sets the start of every robot of environments `envs` for their later resets, from
-    /// `starts`: for each listed environment, one row of x, y, yaw per robot (`(M, robots, 3)`).
-    /// Every start must be clear of the walls and of the environment's other new starts; all are
-    /// checked before any is applied, and the error names the environment and robot.
-    pub fn set_swarm_starts_at(&mut self, envs: &[usize], starts: &[f64]) -> Result<()> {
-        self.set_swarm_rows_at(
-            envs,
-            starts,
-            "starts",
-            |group, k, rows| {
-                let at = |j: usize| [rows[3 * j], rows[3 * j + 1], rows[3 * j + 2]];
-                let [x, y, yaw] = at(k);
-                group[k].check_start(x, y, yaw)?;
-                check_apart(group, k, at(k), at, "start")
-            },
-            |robot, [x, y, yaw]| robot.set_start(x, y, yaw),
-        )
-    }
-
-    /// Sets the goal disc of every robot of environments `envs`, from `goals`: for each listed
-    /// environment, one row of x, y, radius (metres) per robot (`(M, robots, 3)`), instead of
-    /// their world's; checked before any is applied, as [`Batch::set_swarm_starts_at`].
-    pub fn set_swarm_goals_at(&mut self, envs: &[usize], goals: &[f64]) -> Result<()> {
-        self.set_swarm_rows_at(
-            envs,
-            goals,
-            "goals",
-            |_, k, rows| check_goal(rows[3 * k], rows[3 * k + 1], rows[3 * k + 2]),
-            |robot, [x, y, radius]| robot.set_goal(x, y, radius),
-        )
-    }
-
-    /// Applies one row of three values per robot of each listed environment with `apply`, once
-    /// `check` (given the environment's robots, a robot and the environment's rows) has accepted
-    /// every index and row (`what` names the rows in errors).
-    fn set_swarm_rows_at(
-        &mut self,
-        envs: &[usize],
-        rows: &[f64],
-        what: &str,
-        check: impl Fn(&[Simulator], usize, &[f64]) -> Result<()>,
-        apply: impl Fn(&mut Simulator, [f64; 3]) -> Result<()>,
-    ) -> Result<()> {
-        let r = self.robots;
-        if rows.len() != 3 * r * envs.len() {
-            return Err(Error::InvalidArgument(format!(
-                "expected {what} of shape ({}, {r}, 3), a row per robot of each listed \
-                 environment, found {} values",
-                envs.len(),
-                rows.len()
-            )));
-        }
-        for (&e, env_rows) in envs.iter().zip(rows.chunks_exact(3 * r)) {
-            let group = self.group(e)?;
-            for k in 0..r {
-                check(&self.envs[group.clone()], k, env_rows).map_err(|error| match error {
-                    Error::InvalidArgument(m) => {
-                        Error::InvalidArgument(format!("environment {e}, robot {k}: {m}"))
-                    }
-                    other => other,
-                })?;
-            }
-        }
-        for (&e, env_rows) in envs.iter().zip(rows.chunks_exact(3 * r)) {
-            for (k, row) in env_rows.chunks_exact(3).enumerate() {
-                apply(&mut self.envs[e * r + k], [row[0], row[1], row[2]])?;
-            }
-        }
         Ok(())
     }
 

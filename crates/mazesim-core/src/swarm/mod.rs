@@ -238,7 +238,7 @@ fn name_robot(error: Error, name: &str) -> Error {
 
 /// Refuses pose `at` of robot `i` when its body would overlap another robot's at `pose_of(j)`
 /// by more than `START_OVERLAP` (`what` names the poses).
-fn check_apart(
+pub(crate) fn check_apart(
     robots: &[Simulator],
     i: usize,
     at: [f64; 3],
