@@ -761,9 +761,9 @@ class Ros2Bridge:
         self._newcomers_checked = now
         for robot in self.robots:
             writers, readers = robot.command_writers(), robot.state_readers()
-            came = writers - robot.known_writers or readers - robot.known_readers
-            if robot.goal.take():  # a node that drives once it has a goal waits for a state
-                came = True
+            # A node that drives once it has a goal waits for a state, as a new one does.
+            goal_came = robot.goal.take()
+            came = bool(writers - robot.known_writers or readers - robot.known_readers) or goal_came
             if came and self.reset_state_out:
                 robot.newcomer_since = (now, robot.received)
             robot.known_writers, robot.known_readers = writers, readers
