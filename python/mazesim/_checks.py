@@ -195,6 +195,26 @@ def _refusal(value: Any, hint: Any) -> str | None:  # noqa: C901, PLR0911, PLR09
     return _class_refusal(value, hint)
 
 
+#: What to pass instead, by the class a parameter takes and the class of the value given (each
+#: as ``module.qualname``, so that no such package is imported to say it).
+_INSTEAD = {
+    ("gymnasium.vector.vector_env.VectorEnv", "gymnasium.core.Env"): (
+        "make a vector env of it with gymnasium.make_vec(id, num_envs=N)"
+    ),
+}
+
+
+def _instead(value: Any, hint: type) -> str:
+    """What to pass instead of ``value`` where ``hint`` is taken, as a clause (": make ..."), or
+    "" when the table knows no better."""
+    wanted = f"{hint.__module__}.{hint.__qualname__}"
+    for given in type(value).__mro__:
+        tip = _INSTEAD.get((wanted, f"{given.__module__}.{given.__qualname__}"))
+        if tip is not None:
+            return f": {tip}"
+    return ""
+
+
 def _class_refusal(value: Any, hint: type) -> str | None:  # noqa: PLR0911 - one table
     if hint is bool:
         ok = isinstance(value, (bool, np.bool_))
@@ -228,7 +248,11 @@ def _class_refusal(value: Any, hint: type) -> str | None:  # noqa: PLR0911 - one
         ok = isinstance(value, hint)
     else:
         ok = isinstance(value, hint)
-    return None if ok else TypeRefusal(f"expected {_hint_name(hint)}, found {_describe(value)}")
+    if ok:
+        return None
+    return TypeRefusal(
+        f"expected {_hint_name(hint)}, found {_describe(value)}{_instead(value, hint)}"
+    )
 
 
 def _container_refusal(value: Any, hint: Any, origin: Any, args: tuple[Any, ...]) -> str | None:

@@ -10,7 +10,7 @@ import pytest
 import mazesim  # noqa: F401  (registers the tasks)
 from mazesim.envs.baselines import FrontierExplorer
 from mazesim.envs.curriculum import MazeSizeCurriculum, MazeSizeCurriculumWrapper
-from mazesim.errors import InvalidArgumentError
+from mazesim.errors import InvalidArgumentError, WrongTypeError
 
 TASK = "mazesim/UnseenMazeExplore-v0"
 
@@ -76,6 +76,13 @@ def test_apply_refuses_a_fixed_world_and_what_is_not_a_maze_env() -> None:
     env.close()
     with pytest.raises(InvalidArgumentError, match="CartPoleEnv"):
         curriculum.apply(gymnasium.make("CartPole-v1"))
+
+
+def test_the_wrapper_given_one_env_says_how_to_make_a_vector_env_of_it() -> None:
+    env = gymnasium.make(TASK)
+    with pytest.raises(WrongTypeError, match=r"found a TimeLimit: .*gymnasium\.make_vec\(id"):
+        MazeSizeCurriculumWrapper(env, MazeSizeCurriculum())
+    env.close()
 
 
 def test_the_wrapper_moves_the_native_vector_env_to_larger_mazes() -> None:
