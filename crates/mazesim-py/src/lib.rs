@@ -86,14 +86,17 @@ fn file_kind(text: Given<String>) -> PyResult<Option<(String, String)>> {
 /// Whether this process is writing the temporary file `name` (a file name) now, after marking it
 /// as being written (`writing` True) or no longer (False) when `writing` is given: the one set
 /// of writes in progress that the Python writer (`mazesim._atomic`) shares with the core's, so
-/// that neither removes the other's temporary as an orphan.
+/// that neither removes the other's temporary as an orphan. The name is taken as the file
+/// system gives it (a byte that is not UTF-8 comes as a lone surrogate) and kept as the core
+/// keeps its own, decoded with any such byte replaced.
 #[pyfunction]
 #[pyo3(signature = (name, writing=None))]
-fn _temporary_writing(name: &str, writing: Option<bool>) -> bool {
+fn _temporary_writing(name: std::ffi::OsString, writing: Option<bool>) -> bool {
+    let name = name.to_string_lossy();
     if let Some(now) = writing {
-        mazesim_core::temporary_files::set_writing(name, now);
+        mazesim_core::temporary_files::set_writing(&name, now);
     }
-    mazesim_core::temporary_files::is_writing(name)
+    mazesim_core::temporary_files::is_writing(&name)
 }
 
 /// Makes the state made once, on first use, ready while the import holds the interpreter alone:
