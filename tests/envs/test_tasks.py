@@ -18,7 +18,7 @@ import mazesim  # noqa: E402
 from env_worlds import CORRIDOR  # noqa: E402
 from mazesim.envs import TASKS, EPuckMazeEnv  # noqa: E402
 from mazesim.envs.navigation import draw_start_and_goal  # noqa: E402
-from mazesim.errors import InvalidArgumentError  # noqa: E402
+from mazesim.errors import InvalidArgumentError, UnknownNameError  # noqa: E402
 from mazesim.maze import CellMaze  # noqa: E402
 
 
@@ -145,9 +145,9 @@ def test_goal_and_waypoint_are_in_the_robots_frame(tmp_path: Any) -> None:
 
 
 def test_bad_task_options_raise() -> None:
-    with pytest.raises(InvalidArgumentError, match="observation"):
+    with pytest.raises(UnknownNameError, match="observation"):
         EPuckMazeEnv(observation="pixels")
-    with pytest.raises(InvalidArgumentError, match="start_goal"):
+    with pytest.raises(UnknownNameError, match="start_goal"):
         EPuckMazeEnv(start_goal="anywhere")
     with pytest.raises(InvalidArgumentError, match="cell maze"):
         EPuckMazeEnv(world="arena", start_goal="random").reset(seed=0)
