@@ -583,18 +583,13 @@ class _Parameters:
                     raise InvalidArgumentError(f"{where}: {name} refused: {reason}")
 
     def check(self, args: tuple[Any, ...], kwargs: dict[str, Any]) -> None:
-        """Refuses an argument that is not a value of its annotation, a missing one or an
-        unknown one."""
+        """Refuses an unknown argument, a missing one or one that is not a value of its
+        annotation, in the order Python names them: the others may be refused only for standing
+        in a missing one's place (``plot_world(world)`` gives the world as the axes)."""
         if not self.ready:
             self.prepare()
-        for (name, hint), value in zip(self.positional, args):  # noqa: B905 - extras: TypeError
-            if hint is not Any:
-                self.refuse(name, value, hint)
-        for name, value in kwargs.items():
-            hint = self.by_name.get(name, Any)
-            if hint is not Any:
-                self.refuse(name, value, hint)
-            elif not self.any_keyword and name not in self.by_name:
+        for name in kwargs:
+            if not self.any_keyword and name not in self.by_name:
                 names = [known for known in self.by_name if known != self.first]
                 meant = _closest_name(name, names)
                 raise InvalidArgumentError(
@@ -611,6 +606,13 @@ class _Parameters:
                     + self._given_in_another_place(name, args)
                     + (f"; {name}: {meaning}" if meaning else "")
                 )
+        for (name, hint), value in zip(self.positional, args):  # noqa: B905 - extras: TypeError
+            if hint is not Any:
+                self.refuse(name, value, hint)
+        for name, value in kwargs.items():
+            hint = self.by_name.get(name, Any)
+            if hint is not Any:
+                self.refuse(name, value, hint)
 
     def _given_in_another_place(self, missing: str, args: tuple[Any, ...]) -> str:
         """What to add when the value of a missing argument annotated with one of the package's
