@@ -149,6 +149,15 @@ def test_numbers_beyond_the_limits_are_refused_by_the_parser(
     assert any(limit in last for limit in ("at most", "at least", "in [")), last
 
 
+def test_a_resume_with_no_checkpoint_is_refused_in_one_line_before_any_plan(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    assert main(["train", "--out", str(tmp_path / "never-trained"), "--resume"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "no checkpoint to resume from" in err, err
+    assert "whole round" not in err
+
+
 def test_an_empty_output_path_is_refused_not_taken_for_the_current_folder(
     tmp_path: Path, capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
 ) -> None:

@@ -191,7 +191,8 @@ def run_train(args: argparse.Namespace, out: TextIO) -> int:
     folder = RunFolder(args.out, resume=args.resume)
     try:
         with writing_alone(args.out, "mazesim train", create=not args.resume), curve:
-            _say_whole_rounds(settings)
+            if not args.resume or checkpoint_exists(Path(args.out)):
+                _say_whole_rounds(settings)  # a resume with nothing to resume is refused alone
             with progress_display(args, units=_UNITS) as progress:
                 result = train(settings, folder, progress=progress, curve=curve, robot=robot)
     except KeyboardInterrupt:
