@@ -48,7 +48,6 @@ def test_a_missing_argument_given_in_the_place_of_another_says_which_and_the_ord
     # heat map before), the axes' annotation is checked too: the missing argument is still named
     # first, as Python names it first.
     import mazesim.transfer.heatmap  # noqa: F401
-
     from mazesim.plotting import plot_world
 
     world = mazesim.load_world("seed-maze")
