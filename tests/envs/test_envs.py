@@ -257,6 +257,11 @@ def test_bad_vector_actions_name_the_environment() -> None:
 def test_bad_options_raise_clear_errors() -> None:
     with pytest.raises(mazesim.UnknownNameError, match="action_mode"):
         EPuckMazeEnv(action_mode="joystick")
+    # Once an InvalidArgumentError: code that caught ValueError (or LookupError) still does.
+    with pytest.raises(ValueError, match="action_mode"):
+        EPuckMazeEnv(action_mode="joystick")
+    with pytest.raises(LookupError, match="action_mode"):
+        EPuckMazeEnv(action_mode="joystick")
     with pytest.raises(mazesim.UnknownNameError):
         EPuckMazeEnv(world="no-such-world")
     with pytest.raises(mazesim.UnknownNameError):
