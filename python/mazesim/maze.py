@@ -521,7 +521,6 @@ class GoalDistance:
         # Per env and cell: the 5 target values (0 where absent), then 5 presence flags (0 or 1).
         self._targets = np.zeros((num_envs * self._cells, 2 * _TARGETS))
         self._first_cell = np.arange(num_envs, dtype=np.intp) * self._cells
-        self._scalar: _ScalarGoal | None = None
         self.set(np.arange(num_envs), table)
 
     def set(self, envs: npt.NDArray[np.intp] | int, table: PathDistanceTable) -> None:
@@ -549,19 +548,13 @@ class GoalDistance:
         rows = np.concatenate((np.where(present, table.targets, 0.0), present), axis=1)
         view = self._targets.reshape(self.num_envs, self._cells, -1)
         view[envs, :cells] = rows
-        self._scalar = None
 
     def evaluate_one(self, x: float, y: float) -> tuple[float, bool]:
-        """:meth:`evaluate` of environment 0 at (x, y), the float32 pose as Python floats.
-
-        The same operations in the same order on Python floats (IEEE doubles round exactly as
-        numpy's float64 ufuncs do element-wise), so a single env agrees bit for bit with a vector
-        env; for one environment numpy's two dozen array operations cost more than the step.
-        """
-        scalar = self._scalar
-        if scalar is None:
-            scalar = self._scalar = _ScalarGoal(self)
-        return scalar.evaluate(x, y)
+        """:meth:`evaluate` of environment 0 at (x, y), the float32 pose as Python floats."""
+        poses = np.zeros((self.num_envs, 3), dtype=np.float32)
+        poses[0, :2] = x, y
+        distances, reached = self.evaluate(poses)
+        return float(distances[0]), bool(reached[0])
 
     def evaluate(
         self, poses: npt.NDArray[np.float32]
@@ -601,47 +594,3 @@ class GoalDistance:
             return along, reached
         maze = np.array([mode == "maze" for mode in self._modes])
         return np.where(maze, along, np.where(self._has_goal, to_goal, 0.0)), reached
-
-
-class _ScalarGoal:
-    """Environment 0 of a :class:`GoalDistance` in Python floats (see ``evaluate_one``)."""
-
-    def __init__(self, distance: GoalDistance) -> None:
-        self.mode = distance._modes[0]
-        self.goal_x, self.goal_y = float(distance._goal_x[0]), float(distance._goal_y[0])
-        self.goal_r2 = float(distance._goal_r2[0])
-        self.size = float(distance._size[0])
-        self.origin_x, self.origin_y = float(distance._origin_x[0]), float(distance._origin_y[0])
-        self.last_row, self.last_col = int(distance._last_row[0]), int(distance._last_col[0])
-        self.cols = int(distance._cols[0])
-        # Per cell: (value, presence) of each target, in direction order, then the goal point.
-        cells = distance._targets[: distance._cells].tolist()
-        self.cells = [tuple((row[k], row[_TARGETS + k]) for k in range(_TARGETS)) for row in cells]
-
-    def evaluate(self, x: float, y: float) -> tuple[float, bool]:
-        gx = x - self.goal_x
-        gy = y - self.goal_y
-        to_goal2 = gx * gx + gy * gy
-        reached = to_goal2 <= self.goal_r2
-        if self.mode == "maze":
-            return self._along(x, y, math.sqrt(to_goal2)), reached
-        if self.mode == "straight":
-            return math.sqrt(to_goal2), reached
-        return 0.0, reached
-
-    def _along(self, x: float, y: float, to_goal: float) -> float:
-        size = self.size
-        col = min(max(math.floor((x - self.origin_x) / size), 0), self.last_col)
-        up = min(max(math.floor((y - self.origin_y) / size), 0), self.last_row)
-        half = 0.5 * size
-        u = x - (self.origin_x + (col + 0.5) * size)
-        v = y - (self.origin_y + (up + 0.5) * size)
-        cell = self.cells[(self.last_row - up) * self.cols + col]
-        north, east, south, west, goal = cell[NORTH], cell[EAST], cell[SOUTH], cell[WEST], cell[4]
-        w0 = north[1] / max(half - v, _NEAREST)
-        w1 = east[1] / max(half - u, _NEAREST)
-        w2 = south[1] / max(half + v, _NEAREST)
-        w3 = west[1] / max(half + u, _NEAREST)
-        w4 = goal[1] / max(to_goal, _NEAREST)
-        weighted = w0 * north[0] + w1 * east[0] + w2 * south[0] + w3 * west[0] + w4 * goal[0]
-        return weighted / (w0 + w1 + w2 + w3 + w4)
