@@ -212,14 +212,14 @@ def test_missing_cpp_methods_and_headers_of_a_project_library_are_named(tmp_path
         tmp_path,
         "recorder",
         "#include <webots/Supervisor.hpp>\n"
-        "int main() { webots::Supervisor s; s.movieStartRecording(); return 0; }\n",
+        'int main() { webots::Supervisor s; s.animationStartRecording("run.html"); return 0; }\n',
         ".cpp",
     )
     prepared = prepare_controller(str(source))
     assert not prepared.runnable
     assert prepared.missing == [
         "Webots C++ API function(s) mazesim does not implement: "
-        "webots::Supervisor::movieStartRecording"
+        "webots::Supervisor::animationStartRecording"
     ]
     library = write_source(
         tmp_path,

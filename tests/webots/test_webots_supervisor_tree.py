@@ -262,6 +262,8 @@ DEF ARENA RectangleArena { }
 DEF SMALL RectangleArena { translation 3 0 0 floorSize 0.5 0.25 name "small" }
 DEF EPUCK E-puck { translation -0.2 -0.1 0 supervisor TRUE controller "x" }
 DEF OTHER E-puck { translation 0.2 0 0 }
+DEF PLAIN WoodenBox { translation 0.4 0.4 0.05 size 0.1 0.1 0.1 }
+DEF LIGHT WoodenBox { translation -0.4 0.4 0.05 size 0.05 0.1 0.1 mass 0.06 }
 """
 
 
@@ -281,6 +283,15 @@ def test_a_protos_fields_the_file_leaves_out_read_as_the_proto_declares(tmp_path
     assert other.getField("camera_width").getSFInt32() == 52
     assert other.getField("supervisor").getSFBool() is False
     assert other.getField("no such field") is None
+    # A WoodenBox's mass, which a supervisor reads to pick the lightest box: 0 (a box without
+    # physics) where the file leaves it out, an SFFloat either way.
+    plain, light = supervisor.getFromDef("PLAIN"), supervisor.getFromDef("LIGHT")
+    assert plain.getField("mass").getType() == controller.Field.SF_FLOAT
+    assert plain.getField("mass").getSFFloat() == 0.0
+    assert light.getField("mass").getSFFloat() == pytest.approx(0.06)
+    assert plain.getField("size").getSFVec3f() == pytest.approx([0.1, 0.1, 0.1])
+    assert plain.getField("locked").getSFBool() is False
+    assert plain.getField("name").getSFString() == "wooden box"
 
 
 #: Walls whose sizes a supervisor reads through their Shapes' geometry, and a painted marker.

@@ -11,7 +11,8 @@ same fields and defaults from R2019b on), ``projects/robots/gctronic/e-puck/prot
 E-puck.proto`` (R2022b on: the default controller is ``e-puck_avoid_obstacles``, the radio
 channels 1, the camera 52 x 39 pixels with a 0.84 rad field of view; the E-puck.proto of Webots
 V8.5 declares the same default controller and radio channels, so worlds of every version share
-them).
+them), ``projects/objects/factory/containers/protos/WoodenBox.proto`` (size 0.6 m, mass 0,
+unlocked, from R2021b on).
 """
 
 from __future__ import annotations
@@ -107,8 +108,18 @@ _MATERIAL = DeclaredFields(
     floats=frozenset({"ambientIntensity", "shininess", "transparency"}),
 )
 
+# projects/objects/factory/containers/protos/WoodenBox.proto: its size, its mass (0 or less: a
+# box without physics) and its locked flag, which a supervisor reads though the file leaves
+# them out.
+_WOODEN_BOX = DeclaredFields(
+    numbers={"size": [0.6, 0.6, 0.6], "mass": [0.0]},
+    strings={"name": "wooden box"},
+    flags={"locked": False},
+    floats=frozenset({"mass"}),
+)
 _DECLARED = {
     "RectangleArena": _RECTANGLE_ARENA,
+    "WoodenBox": _WOODEN_BOX,
     "E-puck": _E_PUCK,
     "PBRAppearance": _PBR_APPEARANCE,
     "Material": _MATERIAL,

@@ -22,6 +22,7 @@ from dataclasses import dataclass, field
 from typing import TypeVar
 
 from mazesim._paths import MAX_TEXT_CHARACTERS, read_input
+from mazesim.webots.needed_imports import needed_guarded_imports
 from mazesim.webots.stock_controllers import STOCK
 
 _Value = TypeVar("_Value")
@@ -198,14 +199,15 @@ def _guarded(tree: ast.AST) -> set[int]:
 
 
 def _imports(path: str) -> list[tuple[str, str]]:
-    """The modules a file imports outside ``try``: (the folder the name starts from, the dotted
-    name); ``from a import b`` gives ``a.b`` (``b`` may be a submodule)."""
+    """The modules a file imports outside ``try``, and inside ``try`` when it needs them all
+    the same (:mod:`mazesim.webots.needed_imports`): (the folder the name starts from, the
+    dotted name); ``from a import b`` gives ``a.b`` (``b`` may be a submodule)."""
     try:
         source = read_input(path, MAX_TEXT_CHARACTERS, "the controller")
         tree = ast.parse(source)
     except (SyntaxError, ValueError, OSError):
         return []
-    guarded = _guarded(tree)
+    guarded = _guarded(tree) - {id(node) for node in needed_guarded_imports(tree)}
     here = os.path.dirname(path)
     found: list[tuple[str, str]] = []
     for node in ast.walk(tree):
@@ -372,7 +374,8 @@ def runtime_python_paths(path: str) -> list[str]:
 
 
 def imported_names(path: str) -> set[str]:
-    """The top-level names of the modules a controller file imports (outside ``try``), and those
+    """The top-level names of the modules a controller file imports (outside ``try``, or inside
+    it when it needs them all the same), and those
     its own modules and packages beside it (or in a folder it puts on ``sys.path``,
     :func:`path_additions`, or its ``runtime.ini`` on its module path,
     :func:`runtime_python_paths`) import, but not its own modules' names."""

@@ -46,6 +46,7 @@ from mazesim.webots.frames import (
 )
 from mazesim.webots.importer import E_PUCK_MODELS
 from mazesim.webots.inert import ContactPoint, NotSimulated
+from mazesim.webots.movie import MovieRecorder
 from mazesim.webots.node_types import NODE_TYPES
 from mazesim.webots.proto_fields import declared_fields
 from mazesim.webots.radio_devices import E_PUCK_CHANNEL
@@ -691,6 +692,7 @@ class Supervisor(Robot):
                 declared if scene.robot_controller is None else scene.robot_controller
             )
         self._mode = self.SIMULATION_MODE_FAST
+        self._movie = MovieRecorder(self._simulation)
         self._root = Node("Group", node_id=0)
         self._root._tree = self
         made: dict[int, Node] = {}
@@ -1005,6 +1007,41 @@ class Supervisor(Robot):
         refused = export_view(self._simulation, str(filename), quality)
         if refused is not None:
             _print_error(refused)
+
+    def step(self, duration: float | None = None) -> int:
+        """:meth:`Robot.step <mazesim.webots.robot.Robot.step>`, and a frame of the movie
+        being recorded (:meth:`movieStartRecording`) after it."""
+        result = super().step(duration)
+        self._movie.frame()
+        return result
+
+    def movieStartRecording(
+        self,
+        filename: str,
+        width: int,
+        height: int,
+        codec: int,
+        quality: int,
+        acceleration: int,
+        caption: bool,
+    ) -> None:
+        """Starts recording a movie of the simulation into ``filename`` (relative to the
+        controller's folder): the top-down view of each step, as :mod:`mazesim.webots.movie`
+        says; a second start, an empty name, a size, ``quality`` (1 to 100) or
+        ``acceleration`` (1 or more) out of range is refused with Webots' error."""
+        self._movie.start(filename, width, height, quality, acceleration)
+
+    def movieStopRecording(self) -> None:
+        """Stops the movie and writes its file."""
+        self._movie.stop()
+
+    def movieIsReady(self) -> bool:
+        """True unless a movie is being recorded (before a start, and once a stop wrote it)."""
+        return self._movie.ready
+
+    def movieFailed(self) -> bool:
+        """Whether the last movie could not be written."""
+        return self._movie.failed
 
     def virtualRealityHeadsetIsUsed(self) -> bool:
         """False."""

@@ -179,6 +179,33 @@ void wb_supervisor_export_image(const char *filename, int quality) {
   call_end();
 }
 
+void wb_supervisor_movie_start_recording(const char *filename, int width, int height, int codec,
+                                         int quality, int acceleration, bool caption) {
+  call_begin("wb_supervisor_movie_start_recording");
+  call_text(filename);
+  call_int(width);
+  call_int(height);
+  call_int(codec);
+  call_int(quality);
+  call_int(acceleration);
+  call_int(caption ? 1 : 0);
+  call_end();
+}
+
+void wb_supervisor_movie_stop_recording(void) {
+  call_plain("wb_supervisor_movie_stop_recording");
+}
+
+bool wb_supervisor_movie_is_ready(void) {
+  call_plain("wb_supervisor_movie_is_ready");
+  return answer_int(0) != 0;
+}
+
+bool wb_supervisor_movie_failed(void) {
+  call_plain("wb_supervisor_movie_failed");
+  return answer_int(0) != 0;
+}
+
 /* --- nodes --------------------------------------------------------------------------------- */
 
 WbNodeRef wb_supervisor_node_get_root(void) {

@@ -56,6 +56,14 @@ namespace webots {
     void exportImage(const std::string &file, int quality) const {
       wb_supervisor_export_image(file.c_str(), quality);
     }
+    void movieStartRecording(const std::string &file, int width, int height, int codec,
+                             int quality, int acceleration, bool caption) const {
+      wb_supervisor_movie_start_recording(file.c_str(), width, height, codec, quality,
+                                          acceleration, caption);
+    }
+    void movieStopRecording() { wb_supervisor_movie_stop_recording(); }
+    bool movieIsReady() const { return wb_supervisor_movie_is_ready(); }
+    bool movieFailed() const { return wb_supervisor_movie_failed(); }
   };
 }  // namespace webots
 

@@ -66,6 +66,11 @@ void wb_supervisor_world_reload(void);
 void wb_supervisor_set_label(int id, const char *label, double x, double y, double size,
                              int color, double transparency, const char *font);
 void wb_supervisor_export_image(const char *filename, int quality);
+void wb_supervisor_movie_start_recording(const char *filename, int width, int height, int codec,
+                                         int quality, int acceleration, bool caption);
+void wb_supervisor_movie_stop_recording(void);
+bool wb_supervisor_movie_is_ready(void);
+bool wb_supervisor_movie_failed(void);
 /* The names of Webots 8 and before. */
 void wb_supervisor_simulation_revert(void);
 void wb_supervisor_simulation_physics_reset(void);
