@@ -126,6 +126,11 @@ INSTANCES: dict[str, str] = {
         " report={'path': 'tests/data/webots-worlds/e-puck.R2023b.wbt'})))("
         "__import__('mazesim.webots', fromlist=['scene_edits', 'simulation']))"
     ),
+    # The movie of a supervisor of a prepared world, not recording.
+    "mazesim.webots.movie.MovieRecorder": (
+        "(lambda w: w.movie.MovieRecorder(w.simulation.prepare(world)))("
+        "__import__('mazesim.webots', fromlist=['movie', 'simulation']))"
+    ),
     # A recogniser of a camera with Webots' default Recognition node, over no object.
     "mazesim.webots.recognition.Recogniser": (
         "__import__('mazesim.webots.recognition', fromlist=['x']).Recogniser("
