@@ -174,3 +174,17 @@ def test_a_step_not_a_multiple_of_the_basic_step_runs_whole_basic_steps(tmp_path
     assert robot.getBasicTimeStep() == 16.0
     robot.step(20)
     assert round(robot.getTime() * 1000) % 16 == 0 and robot.getTime() >= 0.020
+
+
+def test_a_distance_sensor_the_world_adds_gives_its_aperture(tmp_path: Path) -> None:
+    """wb_distance_sensor_get_aperture: the node's ``aperture``, Webots' default 1.5708 where
+    it leaves it out (reference manual, DistanceSensor); a C or C++ controller's library asks
+    every distance sensor for it at its start."""
+    sensors = (
+        'turretSlot [ DistanceSensor { name "wide" } '
+        'DistanceSensor { name "narrow" aperture 0.5 type "infra-red" } ]'
+    )
+    robot = supervisor_in(tmp_path, world(sensors))
+    assert robot.getDevice("wide").getAperture() == 1.5708
+    assert robot.getDevice("narrow").getAperture() == 0.5
+    assert robot.getDevice("ps0").getAperture() == 0.1
