@@ -278,6 +278,8 @@ def test_a_project_with_a_key_script_runs_every_controller_its_world_starts() ->
     ghost = {**player, "controller": "ghost"}
     assert _runs_whole(project, {"robots": [player, ghost]})
     assert not _runs_whole(project, {"robots": [player, {**ghost, "controller": "<none>"}]})
+    # A project whose manifest says why runs its first controller alone.
+    assert not _runs_whole(replace(project, alone="too slow"), {"robots": [player, ghost]})
 
 
 def test_a_robot_a_supervisor_slides_moves_though_it_travels_nothing(tmp_path: Path) -> None:
