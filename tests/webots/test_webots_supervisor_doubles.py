@@ -5,14 +5,16 @@ the simulation's pose (#32)."""
 
 from __future__ import annotations
 
+import json
 import math
 from pathlib import Path
 
 import numpy as np
 import pytest
 
+from mazesim.webots.lockstep import run_world
 from mazesim.webots.solids import as_given
-from supervised_world import supervisor_in
+from supervised_world import project_of, supervisor_in
 
 pytestmark = pytest.mark.usefixtures("fresh_robot")
 
@@ -77,3 +79,43 @@ def test_a_pose_reads_as_given_only_within_float32_s_rounding() -> None:
     assert as_given(single, (0.1, 0.2, 0.3 + math.tau)) == (0.1, 0.2, 0.3 + math.tau)
     moved = (single[0] + 1e-6, single[1], single[2])
     assert as_given(moved, (0.1, 0.2, 0.3)) == moved
+
+
+#: Two e-pucks: a supervisor at the origin that notes where the other is, and the other,
+#: idle at (0.3, -0.2) turned 0.7 rad, until it is moved to x = 0.123456789.
+FLEET_WORLD = """#VRML_SIM R2023b utf8
+WorldInfo { basicTimeStep 32 }
+RectangleArena { floorSize 2 2 }
+DEF WATCHER E-puck { name "watcher" supervisor TRUE controller "watcher" }
+DEF OTHER E-puck {
+  translation 0.3 -0.2 0
+  rotation 0 0 1 0.7
+  name "other"
+  controller "idle"
+}
+"""
+IDLE = "from controller import Robot\nrobot = Robot()\nwhile robot.step(32) != -1:\n    pass\n"
+WATCHER = """import json
+import sys
+from controller import Supervisor
+
+robot = Supervisor()
+other = robot.getFromDef("OTHER")
+seen = []
+robot.step(32)
+seen.append(other.getPosition()[:2] + [other.getField("rotation").getSFRotation()[3]])
+other.getField("translation").setSFVec3f([0.123456789, -0.2, 0.0])
+robot.step(32)
+robot.step(32)
+seen.append(other.getPosition()[:2])
+with open(sys.argv[1] if len(sys.argv) > 1 else "seen.json", "w") as out:
+    json.dump(seen, out)
+"""
+
+
+def test_another_robot_of_a_world_run_reads_the_doubles_it_was_given(tmp_path: Path) -> None:
+    world = project_of(tmp_path, "fleet.wbt", FLEET_WORLD, {"idle": IDLE, "watcher": WATCHER})
+    watcher, other = run_world(str(world), seconds=0.2, noise=False).robots
+    assert watcher.exit_status == 0, watcher.error
+    seen = json.loads((tmp_path / "controllers" / "watcher" / "seen.json").read_text())
+    assert seen == [[0.3, -0.2, 0.7], [0.123456789, -0.2]]
