@@ -20,6 +20,8 @@ it. Each ``[[project]]`` table has these fields:
 - ``broken``: empty when the project works in Webots as published, else why it does not;
 - optional ``known``: what is known of why a run here does not show the expected facts, with
   its figures (a row that does not pass ends its cause with it);
+- optional ``alone``: why the corpus runs the project's first controller alone though its
+  world starts several (the row's cause begins with it); without it such a world runs whole;
 - optional ``exports``: repository paths the run needs besides the project's folder and its
   controllers' (``""``: the whole repository), such as the library a controller's own
   ``CMakeLists.txt`` builds from the repository's root;
@@ -75,6 +77,7 @@ class Project:
     expect: tuple[str, ...]
     broken: str = ""
     known: str = ""
+    alone: str = ""
     packages: tuple[str, ...] = ()
     keys: tuple[str, ...] = field(default=())
     exports: tuple[str, ...] = ()
@@ -127,8 +130,10 @@ def _check(index: int, table: dict[str, Any]) -> Project:
     if not isinstance(broken, str):
         raise ManifestError(f"{where}: expected broken a string, found {broken!r}")
     known = table.get("known", "")
-    if not isinstance(known, str):
-        raise ManifestError(f"{where}: expected known a string, found {known!r}")
+    alone = table.get("alone", "")
+    for key, text in (("known", known), ("alone", alone)):
+        if not isinstance(text, str):
+            raise ManifestError(f"{where}: expected {key} a string, found {text!r}")
     if "broken" not in table:
         raise ManifestError(f"{where}: expected the field 'broken' ('' when it works in Webots)")
     if not table.get("expect") and not broken:
@@ -150,6 +155,7 @@ def _check(index: int, table: dict[str, Any]) -> Project:
         expect=tuple(table.get("expect", [])),
         broken=broken,
         known=known,
+        alone=alone,
         packages=tuple(table.get("packages", [])),
         keys=tuple(table.get("keys", [])),
         exports=tuple(exports),

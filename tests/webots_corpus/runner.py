@@ -65,18 +65,22 @@ _IMPORTS_E_PUCKS = re.compile(r'IMPORTABLE\s+EXTERNPROTO\s+"[^"]*/E-puck2?\.prot
 
 
 def _runs_whole(project: Project, report: dict[str, Any], text: str = "") -> bool:
-    """Whether the world (its import ``report`` and file ``text``) runs whole: a project
-    without a key script in which several robots have a controller (Python, C or C++; a node
-    that leaves its ``controller`` field out has its PROTO's default one), or whose world has
-    no e-puck but declares the E-puck importable, or whose first controller is in a language
-    mazesim does not run (the world's run says so of its robot, which stands still)."""
+    """Whether the world (its import ``report`` and file ``text``) runs whole: a project in
+    which several robots have a controller (Python, C or C++; a node that leaves its
+    ``controller`` field out has its PROTO's default one), or whose world has no e-puck but
+    declares the E-puck importable, or whose first controller is in a language mazesim does
+    not run (the world's run says so of its robot, which stands still). A key script does not
+    make it a run of one controller: the whole world's run types its keys on every
+    controller's Keyboard, as Webots sends the keys typed with no robot selected to every
+    robot, and the other robots' controllers run as Webots runs them; a project whose
+    manifest says why (``alone``) runs its first controller alone."""
     from mazesim.webots.lockstep import controller_name
 
     robots = report.get("robots") or []
     running = [r for r in robots if controller_name(r) not in NO_CONTROLLER]
     if project.language not in RUN:
         return True
-    if project.keys:
+    if project.alone:
         return False
     no_e_puck = running and not any(r.get("profile") is not None for r in robots)
     return len(running) > 1 or bool(no_e_puck and _IMPORTS_E_PUCKS.search(text))
@@ -345,6 +349,8 @@ def _judge(
         result = "broken itself" if project.broken else "not run"
         return Row(project, result, project.broken or cause, checks, warnings)
     stopped = run.exit_status is None
+    if project.alone:
+        parts.append(f"its first controller alone: {project.alone}")
     if stopped:
         parts.append(f"stopped after {project.seconds + GRACE_S:.0f} s of wall-clock time")
         if run.last_error:

@@ -19,7 +19,7 @@ from webots_corpus.census import Census, losses, proto_instances
 from webots_corpus.facts import Outcome, check, dark_fraction, min_gap, parse_fact
 from webots_corpus.manifest import ManifestError, Project, load_manifest, parse_manifest
 from webots_corpus.report import render
-from webots_corpus.runner import _robots_moving, _world_missing, run_project
+from webots_corpus.runner import _robots_moving, _runs_whole, _world_missing, run_project
 
 DATA = Path(__file__).resolve().parents[1] / "data" / "webots_corpus"
 COMMIT = "0123456789abcdef0123456789abcdef01234567"
@@ -267,6 +267,19 @@ def test_a_whole_world_s_missing_features_are_its_own_robot_s_else_the_others_na
     ]
     assert _world_missing(summary, leader) == ["Webots C API function(s): robot_step"]
     assert _world_missing({"robots": [own]}, own) == []
+
+
+def test_a_project_with_a_key_script_runs_every_controller_its_world_starts() -> None:
+    """A key script does not make a world of several controllers a run of its first alone:
+    the whole world runs, the keys typed on every controller's Keyboard (a Pac-Man player and
+    its three ghosts, a supervisor beside a keyboard-driven e-puck)."""
+    project = replace(parse_manifest(PROJECT_TOML)[0], keys=("1 UP 3",))
+    player = {"controller": "player", "model": "E-puck", "profile": "e-puck"}
+    ghost = {**player, "controller": "ghost"}
+    assert _runs_whole(project, {"robots": [player, ghost]})
+    assert not _runs_whole(project, {"robots": [player, {**ghost, "controller": "<none>"}]})
+    # A project whose manifest says why runs its first controller alone.
+    assert not _runs_whole(replace(project, alone="too slow"), {"robots": [player, ghost]})
 
 
 def test_a_robot_a_supervisor_slides_moves_though_it_travels_nothing(tmp_path: Path) -> None:

@@ -19,6 +19,7 @@ from typing import Any
 
 from mazesim.webots.camera import Camera, CameraView, node_view
 from mazesim.webots.devices import (
+    EPUCK_PROXIMITY_APERTURE,
     LED,
     PROXIMITY_TABLE,
     Device,
@@ -39,6 +40,7 @@ from mazesim.webots.radio_devices import (
 )
 from mazesim.webots.robot_frames import Mount, robot_mount
 from mazesim.webots.sensors import (
+    DISTANCE_SENSOR_APERTURE,
     GPS,
     Accelerometer,
     Compass,
@@ -162,7 +164,10 @@ def extension_device(simulation: RobotSimulation, entry: Mapping[str, Any]) -> D
         entry.get("axes") if kind in _TILTED_KINDS else None,
     )
     table = _table(fields)
-    if table is None and fields.get("model") == EPUCK_DISTANCE_SENSOR_MODEL:
+    e_puck_sensor = fields.get("model") == EPUCK_DISTANCE_SENSOR_MODEL
+    default = EPUCK_PROXIMITY_APERTURE if e_puck_sensor else DISTANCE_SENSOR_APERTURE
+    aperture = float(fields.get("aperture", default))
+    if table is None and e_puck_sensor:
         table = [list(row) for row in PROXIMITY_TABLE]
     north = simulation.scene.north or (0.0, 1.0)
     builders: dict[str, Callable[[], Device]] = {
@@ -173,7 +178,7 @@ def extension_device(simulation: RobotSimulation, entry: Mapping[str, Any]) -> D
         "InertialUnit": lambda: InertialUnit(name, simulation, mount, None),
         "TouchSensor": lambda: TouchSensor(name, simulation),
         "DistanceSensor": lambda: RayDistanceSensor(
-            name, simulation, mount, table, str(fields.get("type", "generic"))
+            name, simulation, mount, table, str(fields.get("type", "generic")), aperture
         ),
         "LightSensor": lambda: (
             LightSensor(name, simulation, table, mount)

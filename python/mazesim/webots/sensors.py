@@ -438,9 +438,14 @@ class TouchSensor(_ScalarSensor):
 DOWNWARD_PITCH = math.pi / 4
 
 
+#: Webots' DistanceSensor ``aperture`` where the node leaves it out (rad; the reference
+#: manual's DistanceSensor node: ``SFFloat aperture 1.5708``).
+DISTANCE_SENSOR_APERTURE = 1.5708
+
+
 class RayDistanceSensor(DistanceSensor):
     """A distance sensor the world adds: one ray from its mount against the walls (a
-    :class:`DistanceSensor`, with the world's table and type)."""
+    :class:`DistanceSensor`, with the world's table, type and aperture)."""
 
     def __init__(
         self,
@@ -449,8 +454,10 @@ class RayDistanceSensor(DistanceSensor):
         mount: DeviceMount,
         table: Sequence[Sequence[float]] | None = None,
         sensor_type: str = "generic",
+        aperture: float = DISTANCE_SENSOR_APERTURE,
     ) -> None:
         _ScalarSensor.__init__(self, name, simulation)
+        self._aperture = aperture
         self._mount = mount
         self._table = LookupTable(DISTANCE_TABLE if not table else table)
         self._type = DISTANCE_SENSOR_TYPES.get(sensor_type, self.GENERIC)
@@ -487,6 +494,11 @@ class RayDistanceSensor(DistanceSensor):
     def getType(self) -> int:
         """The sensor type from the world (``GENERIC`` by default)."""
         return self._type
+
+    def getAperture(self) -> float:
+        """The node's ``aperture`` (rad): the world's, an ``E-puckDistanceSensor``'s 0.1, else
+        Webots' default, 1.5708 (mazesim casts one ray whatever it is)."""
+        return self._aperture
 
 
 def _product(first: Sequence[float], second: Sequence[float]) -> list[float]:

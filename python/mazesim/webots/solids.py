@@ -16,10 +16,13 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
+import numpy as np
+
 __all__ = [
     "Held",
     "Pose2",
     "WorldSolids",
+    "as_given",
     "carried_over",
     "composed",
     "held_by_line",
@@ -190,3 +193,30 @@ def composed(base: Pose2, offset: Pose2) -> Pose2:
     c, s = math.cos(base[2]), math.sin(base[2])
     x, y, yaw = offset
     return base[0] + c * x - s * y, base[1] + s * x + c * y, base[2] + yaw
+
+
+def as_given(physics: Pose2, *given: Pose2 | None) -> Pose2:
+    """The first of the poses ``given`` (one the world file or a supervisor gave a node, in
+    double precision) that ``physics`` is, to the simulation's own precision, else ``physics``.
+
+    The simulation keeps poses in single precision (float32, as its batched runs do), where
+    Webots keeps them in double and its supervisor returns doubles (``const double
+    *wb_supervisor_node_get_position``, Webots' reference manual, Supervisor): a node put at
+    x = 0.1 would read 0.10000000149011612. While the simulation holds it still where it was
+    put, the node reads the double it was given; once it moves, the simulation's pose. Each
+    coordinate may differ by two float32 steps at its size (the rounding of the value stored,
+    and of the poses it is composed with), a yaw by whole turns too; a robot moving at 1 mm/s
+    moves 32 um in a step of 32 ms, far more."""
+    for pose in given:
+        if pose is not None and all(
+            abs(math.remainder(p - g, math.tau) if i == 2 else p - g) <= _single_step(g)
+            for i, (p, g) in enumerate(zip(physics, pose))
+        ):
+            return pose
+    return physics
+
+
+def _single_step(value: float) -> float:
+    """Two float32 steps at ``value``'s size, and 1e-12 besides (a value of 0 computed two
+    ways)."""
+    return 2.0 * float(np.spacing(np.float32(min(abs(value), 3.0e38)))) + 1.0e-12

@@ -53,7 +53,15 @@ from mazesim.webots.radio_devices import E_PUCK_CHANNEL
 from mazesim.webots.robot import Robot
 from mazesim.webots.scene import CHILDREN_TYPES, EPUCK_TYPES, GROUPING_TYPES, SceneNode
 from mazesim.webots.scene_edits import Change, scene_edits
-from mazesim.webots.solids import Held, Pose2, composed, held_by_line, relative, world_objects
+from mazesim.webots.solids import (
+    Held,
+    Pose2,
+    as_given,
+    composed,
+    held_by_line,
+    relative,
+    world_objects,
+)
 from mazesim.webots.world_save import with_fields
 
 __all__ = ["Field", "Node", "Supervisor"]
@@ -140,6 +148,8 @@ class Node(NotSimulated):
         #: Its pose in the frame of the one movable body it holds alone (it follows that
         #: body), and its height; None otherwise.
         self._on_body: tuple[Pose2, float] | None = None
+        #: The pose a supervisor last moved a live node to (world frame), as it gave it.
+        self._given_pose: Pose2 | None = None
         #: The supervisor whose scene tree the node is the root of (None for another node).
         self._tree: Supervisor | None = None
 
@@ -160,23 +170,31 @@ class Node(NotSimulated):
             base_type=node.base_type,
             name=node.name,
         )
-        made._numbers = {name: list(values) for name, values in node.numbers.items()}
+        made._line = node.line
+        made._take_fields(node)
+        return made
+
+    def _take_fields(self, node: SceneNode) -> None:
+        """Takes the fields the world file gives ``node`` (a PROTO instance's own, such as the
+        E-puck's ``camera_width``, too) and those its PROTO declares that the file leaves out,
+        at their defaults, as Webots' ``wb_supervisor_node_get_field`` finds them; strings the
+        node already holds (the run's robot's live ``name``, ``customData``) stay."""
+        self._numbers = {name: list(values) for name, values in node.numbers.items()}
         if node.type_name in EPUCK_TYPES:
             # The E-puck PROTO's radio channels, at its default where the file sets none.
             for channel in ("emitter_channel", "receiver_channel"):
-                made._numbers.setdefault(channel, [float(E_PUCK_CHANNEL)])
-        made._flags = dict(node.flags)
-        made._line = node.line
-        made._strings.update(node.strings)
-        # The fields the PROTO declares that the file leaves out, at their defaults.
+                self._numbers.setdefault(channel, [float(E_PUCK_CHANNEL)])
+        self._flags = dict(node.flags)
+        held = dict(self._strings) if self._robot else {}
+        self._strings.update(node.strings)
+        self._strings.update(held)
         declared = declared_fields(node.type_name)
         for name, values in declared.numbers.items():
-            made._numbers.setdefault(name, list(values))
+            self._numbers.setdefault(name, list(values))
         for name, text in declared.strings.items():
-            made._strings.setdefault(name, text)
+            self._strings.setdefault(name, text)
         for name, flag in declared.flags.items():
-            made._flags.setdefault(name, flag)
-        return made
+            self._flags.setdefault(name, flag)
 
     def _adopt(self, children: list[Node]) -> None:
         """Makes ``children`` the node's ``children`` field (a node a ``USE`` lists again
@@ -294,29 +312,66 @@ class Node(NotSimulated):
             self._translation, self._rotation = kept
 
     def _pose(self) -> tuple[float, float, float]:
+        """The node's pose seen from above in the world frame: a live node's as the simulation
+        holds it, or as it was given while the simulation holds it still there
+        (:func:`~mazesim.webots.solids.as_given`), another's from its fields."""
+        if self._live:
+            physics = self._live_pose()
+            if physics is not None:
+                return as_given(physics, self._given_pose, self._start_pose())
+        if self._translation is None:
+            return math.nan, math.nan, math.nan
+        yaw = _yaw_of_rotation(list(self._rotation)) if self._rotation else 0.0
+        return self._translation[0], self._translation[1], yaw
+
+    def _live_pose(self) -> Pose2 | None:
+        """A live node's pose as the simulation holds it (None: a body no longer there)."""
         if self._on_body is not None:
             index = self._held.bodies[0]
             poses = world_objects(self._simulation()).body_poses()
             if index < len(poses):
                 x, y, yaw = poses[index]
                 return composed((float(x), float(y), float(yaw)), self._on_body[0])
+            return None
         if self._fleet_index is not None:
             x, y, yaw = self._simulation().fleet.pose(self._fleet_index)
             return float(x), float(y), float(yaw)
-        if self._robot:
-            x, y, yaw = self._simulation().simulator.pose
-            return float(x), float(y), float(yaw)
-        if self._translation is None:
-            return math.nan, math.nan, math.nan
-        yaw = _yaw_of_rotation(list(self._rotation)) if self._rotation else 0.0
-        return self._translation[0], self._translation[1], yaw
+        x, y, yaw = self._simulation().simulator.pose
+        return float(x), float(y), float(yaw)
+
+    def _start_pose(self) -> Pose2 | None:
+        """A live node's pose at the start as the world file gives it (the import report's, in
+        double precision): a robot's, or that of the movable body it follows composed with its
+        place on it."""
+        report = self._simulation().report
+        if self._on_body is not None:
+            bodies = report.get("bodies") or []
+            index = self._held.bodies[0]
+            if index >= len(bodies):
+                return None
+            body = bodies[index]
+            start = (
+                float(body["center"][0]),
+                float(body["center"][1]),
+                float(body.get("yaw", 0.0)),
+            )
+            return composed(start, self._on_body[0])
+        own = self._simulation().robot_index if self._robot else self._fleet_index
+        for index, robot in enumerate(report.get("robots") or []):
+            if robot.get("index", index) == own and robot.get("pose") is not None:
+                x, y, yaw = robot["pose"]
+                return float(x), float(y), float(yaw)
+        return None
 
     def _move(self, x: float, y: float, yaw: float) -> None:
-        """Moves the robot, or the movable body the node follows, in the simulation, at rest."""
+        """Moves the robot, or the movable body the node follows, in the simulation, at rest
+        (the pose it reads while it stays there is the one given: :meth:`_pose`)."""
+        before = self._pose()
+        self._given_pose = (x, y, yaw)
         if self._on_body is not None:
-            self._move_held(self._pose(), (x, y, yaw))
+            self._move_held(before, (x, y, yaw))
             return
-        if self._held and not self._move_held(self._pose(), (x, y, yaw)):
+        if self._held and not self._move_held(before, (x, y, yaw)):
             return  # a robot kept as an obstacle: refused where its obstacle cannot go
         if self._fleet_index is not None:
             self._simulation().fleet.move(self._fleet_index, x, y, yaw)
@@ -326,11 +381,15 @@ class Node(NotSimulated):
     def _string(self, name: str) -> str:
         """A string field's value: another robot's ``customData`` as the last write left it,
         the robot's own ``setCustomData`` as much as a supervisor's (the world's process keeps
-        it), any other as this node holds it."""
+        it), the run's own robot's as its ``getCustomData`` reads it, any other as this node
+        holds it."""
         if name == "customData" and self._fleet_index is not None:
             written = self._simulation().fleet.custom_data_field(self._fleet_index)
             if written is not None:
                 return str(written)
+        if name == "customData" and self._robot and Robot.created is not None:
+            # wb_robot_set_custom_data writes the robot's field (reference manual, Robot).
+            return Robot.created.getCustomData()
         return self._strings.get(name, "")
 
     def _tell_custom_data(self, text: str) -> None:
@@ -570,8 +629,11 @@ def _nodes_of(listed: list[SceneNode], made: dict[int, Node], robot: Node) -> li
     """The node of each scene node (``robot`` for the robot's): one per scene node, however
     often ``USE`` lists it (``made`` keeps them)."""
     for scene_node in listed:
-        if id(scene_node) not in made:
-            made[id(scene_node)] = robot if scene_node.robot else Node.from_scene(scene_node, 0)
+        if id(scene_node) not in made and scene_node.robot:
+            robot._take_fields(scene_node)
+            made[id(scene_node)] = robot
+        elif id(scene_node) not in made:
+            made[id(scene_node)] = Node.from_scene(scene_node, 0)
     return [made[id(scene_node)] for scene_node in listed]
 
 

@@ -1,0 +1,56 @@
+"""The E-puck's ground sensors module sits and faces where Webots' PROTOs put it, before R2022a
+and since (#32).
+
+Webots' E-puck.proto before R2022a (V8.5 to R2021b, Y-up) mounts its ``groundSensorsSlot`` in a
+Transform 3 cm forward (``translation 0 0.0003 -0.03``, the robot facing -z) turned ``0 0 1
+-1.57``; its E-puckGroundSensors.proto (R2019b) turns itself back by its default ``rotation 0
+0 1 1.5708`` and holds gs0, gs1, gs2 at x = -0.01, 0, 0.01 (x to the robot's right: gs0 on
+the left), 3 mm up, each turned ``0 0 1 -1.57`` so that its x axis points at the floor. Since
+R2022a (Z-up) the slot is ``translation 0.03 0 0.0003``, unturned, and the module's default
+rotation is ``0 0 1 0``. In both, gs0 is 1 cm left of the middle, gs2 1 cm right, 3 cm ahead of
+the centre, looking down: a dark strip under the robot's front left darkens gs0 alone.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from supervised_world import supervisor_in
+
+pytestmark = pytest.mark.usefixtures("fresh_robot")
+
+#: A black strip 2 cm x 3.5 cm on the floor under the robot's front left (ENU: x 0.02 to
+#: 0.04, y 0.005 to 0.04), in each version's frame: Webots' converter maps NUE (x, y, z) to
+#: ENU (-z, -x, y).
+STRIPS = {
+    "R2023b": "translation 0.03 0.0225 0.0005",
+    "R2021a": "translation -0.0225 0.0005 -0.03",
+}
+SIZES = {"R2023b": "0.02 0.035 0.001", "R2021a": "0.035 0.001 0.02"}
+
+
+def world(version: str) -> str:
+    return (
+        f"#VRML_SIM {version} utf8\n"
+        "WorldInfo { basicTimeStep 32 }\n"
+        "RectangleArena { floorSize 1 1 }\n"
+        f"Transform {{ {STRIPS[version]} children [ Shape {{\n"
+        "  appearance PBRAppearance { baseColor 0 0 0 roughness 1 metalness 0 }\n"
+        f"  geometry Box {{ size {SIZES[version]} }} }} ] }}\n"
+        'E-puck { supervisor TRUE controller "<extern>"\n'
+        "  groundSensorsSlot [ E-puckGroundSensors { } ] }\n"
+    )
+
+
+@pytest.mark.parametrize("version", ["R2021a", "R2023b"])
+def test_a_strip_under_the_front_left_darkens_gs0_alone(tmp_path: Path, version: str) -> None:
+    robot = supervisor_in(tmp_path, world(version))
+    sensors = [robot.getDevice(f"gs{i}") for i in range(3)]
+    for sensor in sensors:
+        sensor.enable(32)
+    robot.step(32)
+    left, middle, right = (sensor.getValue() for sensor in sensors)
+    assert left < 0.7 * middle, (left, middle, right)
+    assert right == pytest.approx(middle, rel=0.1), (left, middle, right)
