@@ -226,19 +226,31 @@ def subscriber_count(rospy: Any, given: Any) -> int:
 
 
 def publisher(
-    ros: Any, topic: str, message_class: Any, synchronous: bool, latch: bool = False
+    ros: Any,
+    topic: str,
+    message_class: Any,
+    synchronous: bool,
+    latch: bool = False,
+    late: Any = None,
 ) -> Any:
     """Creates a publisher, synchronous or queued.
 
     A synchronous publisher (``queue_size=None``) writes to every subscriber inside ``publish``:
     nothing is dropped, and a slow subscriber slows the publisher, which is what lockstep wants.
-    A queued one keeps the latest 10 messages per subscriber and drops older ones.
+    A queued one keeps the latest 10 messages per subscriber and drops older ones. With ``late``
+    (a :class:`~mazesim.ros.latched.LateConnections`) it is latched that way instead of rospy's:
+    it says it latches, and ``late`` hands a subscription that connects the message it missed.
     """
     with warnings.catch_warnings():
         # rospy warns about queue_size=None, which is how it spells synchronous publishing.
         warnings.simplefilter("ignore", SyntaxWarning)
         return ros.rospy.Publisher(
-            topic, message_class, queue_size=None if synchronous else 10, latch=latch
+            topic,
+            message_class,
+            queue_size=None if synchronous else 10,
+            latch=latch and late is None,
+            subscriber_listener=late,
+            headers={"latching": "1"} if late is not None else None,
         )
 
 
