@@ -33,6 +33,8 @@ environment) and read its standard output.
                                        of scan and of odom, in that order; answers each scan with a
                                        twist once an odom has come, N times; the stamps of every
                                        scan received and of those answered
+    ros_probe.py map                   rospy.wait_for_message on map (a planner waiting for
+                                       map_server's map): its frame, size, origin and occupied cells
     ros_probe.py listen SECONDS        record what the bridge publishes for SECONDS (wall clock)
     ros_probe.py count TOPIC N         receive N messages of TOPIC (e.g. from rosbag play)
     ros_probe.py count-with-clock TOPIC N
@@ -58,7 +60,7 @@ from typing import Any
 
 import rospy
 from geometry_msgs.msg import PoseStamped, Twist
-from nav_msgs.msg import Odometry
+from nav_msgs.msg import OccupancyGrid, Odometry
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import LaserScan, Range
 from std_msgs.msg import Float64MultiArray, String
@@ -444,6 +446,16 @@ def main() -> int:
                 result = drive_on_timer(float(sys.argv[2]), json.load(handle))
         elif mode == "drive-after-goal":
             result = drive_after_goal(int(sys.argv[2]))
+        elif mode == "map":
+            grid = rospy.wait_for_message("map", OccupancyGrid, timeout=TIMEOUT_S)
+            result = {
+                "frame": grid.header.frame_id,
+                "resolution": grid.info.resolution,
+                "width": grid.info.width,
+                "height": grid.info.height,
+                "origin": [grid.info.origin.position.x, grid.info.origin.position.y],
+                "occupied": sum(1 for cell in grid.data if cell == 100),
+            }
         elif mode == "scan-with-odom":
             result = scan_with_odom(int(sys.argv[2]))
         elif mode == "listen":

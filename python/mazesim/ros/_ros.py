@@ -106,7 +106,8 @@ def require_ros() -> Any:
     Returns:
         A namespace with ``rospy``, ``rosgraph``, ``Float64MultiArray``, ``MultiArrayDimension``,
         ``String``, ``Clock`` and the standard messages ``Range``, ``LaserScan``, ``Odometry``,
-        ``Twist``, ``TransformStamped``, ``TFMessage`` and ``PoseStamped``, and the service
+        ``OccupancyGrid``, ``Twist``, ``TransformStamped``, ``TFMessage`` and ``PoseStamped``,
+        and the service
         ``Empty`` (``std_srvs``) with ``EmptyResponse``.
 
     Raises:
@@ -116,7 +117,7 @@ def require_ros() -> Any:
         import rosgraph
         import rospy
         from geometry_msgs.msg import PoseStamped, TransformStamped, Twist
-        from nav_msgs.msg import Odometry
+        from nav_msgs.msg import OccupancyGrid, Odometry
         from rosgraph_msgs.msg import Clock
         from sensor_msgs.msg import LaserScan, Range
         from std_msgs.msg import Float64MultiArray, MultiArrayDimension, String
@@ -137,6 +138,7 @@ def require_ros() -> Any:
         Range=Range,
         LaserScan=LaserScan,
         Odometry=Odometry,
+        OccupancyGrid=OccupancyGrid,
         Twist=Twist,
         TransformStamped=TransformStamped,
         TFMessage=TFMessage,
