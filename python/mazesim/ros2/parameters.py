@@ -73,8 +73,10 @@ def idl_types(distro: str, srvtype: str) -> tuple[Any, Any]:
     ``rmw_cyclonedds_cpp`` puts first (the client's id, the sequence number): Cyclone checks a
     sample it receives or writes against its type, and would drop a request whose header it
     read as the first field's length."""
-    import cyclonedds.idl.types as idl
+    import cyclonedds.idl.types as idl_types_module
     from cyclonedds.idl import make_idl_struct
+
+    idl: Any = idl_types_module
 
     bases: dict[str, Any] = {"string": str, "uint64": idl.uint64, "uint8": idl.uint8}
     name = srvtype.rsplit("/", 1)[1]
