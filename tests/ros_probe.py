@@ -29,6 +29,12 @@ environment) and read its standard output.
     ros_probe.py drive-after-goal N   send a goal on move_base_simple/goal once an odom has come
                                        (a click on rviz's 2D Nav Goal), then answer each odom
                                        with a cmd_vel twist, N times; the stamps answered
+    ros_probe.py scan-with-odom N     as a Bug planner: a cmd_vel publisher, then subscriptions
+                                       of scan and of odom, in that order; answers each scan with a
+                                       twist once an odom has come, N times; the stamps of every
+                                       scan received and of those answered
+    ros_probe.py map                   rospy.wait_for_message on map (a planner waiting for
+                                       map_server's map): its frame, size, origin and occupied cells
     ros_probe.py listen SECONDS        record what the bridge publishes for SECONDS (wall clock)
     ros_probe.py count TOPIC N         receive N messages of TOPIC (e.g. from rosbag play)
     ros_probe.py count-with-clock TOPIC N
@@ -54,7 +60,7 @@ from typing import Any
 
 import rospy
 from geometry_msgs.msg import PoseStamped, Twist
-from nav_msgs.msg import Odometry
+from nav_msgs.msg import OccupancyGrid, Odometry
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import LaserScan, Range
 from std_msgs.msg import Float64MultiArray, String
@@ -388,6 +394,36 @@ def drive_after_goal(count: int) -> dict[str, Any]:
     return {"answered": answered}
 
 
+def scan_with_odom(count: int) -> dict[str, Any]:
+    """Answers each ``scan`` with a twist, once an ``odom`` has come (skipping the scans before),
+    ``count`` times, its ``scan`` subscription made before its ``odom`` one, as a Bug planner
+    on one thread does; returns the stamps of every scan received and of those answered."""
+    cmd_vel = publisher("cmd_vel", Twist)
+    seen = threading.Condition()
+    odometry: list[Odometry] = []
+    scans: list[float] = []
+    answered: list[float] = []
+
+    def on_scan(message: LaserScan) -> None:
+        with seen:
+            scans.append(message.header.stamp.to_sec())
+            if odometry and len(answered) < count:
+                cmd_vel.publish(Twist())
+                answered.append(message.header.stamp.to_sec())
+            seen.notify_all()
+
+    def on_odom(message: Odometry) -> None:
+        with seen:
+            odometry.append(message)
+
+    rospy.Subscriber("scan", LaserScan, on_scan, tcp_nodelay=True)
+    rospy.Subscriber("odom", Odometry, on_odom, tcp_nodelay=True)
+    with seen:
+        if not seen.wait_for(lambda: len(answered) >= count, TIMEOUT_S):
+            raise SystemExit(f"answered {len(answered)} of {count}")
+    return {"scans": scans, "answered": answered}
+
+
 def main() -> int:
     mode = sys.argv[1]
     rospy.init_node("ros_probe", anonymous=True, disable_signals=True)
@@ -410,6 +446,18 @@ def main() -> int:
                 result = drive_on_timer(float(sys.argv[2]), json.load(handle))
         elif mode == "drive-after-goal":
             result = drive_after_goal(int(sys.argv[2]))
+        elif mode == "map":
+            grid = rospy.wait_for_message("map", OccupancyGrid, timeout=TIMEOUT_S)
+            result = {
+                "frame": grid.header.frame_id,
+                "resolution": grid.info.resolution,
+                "width": grid.info.width,
+                "height": grid.info.height,
+                "origin": [grid.info.origin.position.x, grid.info.origin.position.y],
+                "occupied": sum(1 for cell in grid.data if cell == 100),
+            }
+        elif mode == "scan-with-odom":
+            result = scan_with_odom(int(sys.argv[2]))
         elif mode == "listen":
             recorder = Recorder(STATE_TOPICS)
             time.sleep(float(sys.argv[2]))

@@ -757,6 +757,33 @@ def test_a_goal_follower_gets_the_state_again_once_its_goal_came(master: LocalMa
     assert "a goal came on /move_base_simple/goal and no command" in log
 
 
+@needs_ros
+def test_a_late_subscription_gets_the_state_once_in_the_order_it_went_out(
+    master: LocalMaster,
+) -> None:
+    # A recorder of pose connected before the driver, and a Bug-like node whose scan subscription
+    # connects before its odom one and skips scans until an odometry has come. rospy's latch gave
+    # the node the scan first: it skipped it and answered the state sent again 5 s later.
+    spawn_bridge(master, "--seed", "3", "--duration", str(10 * 0.032))
+    recorder = subprocess.Popen(
+        [sys.executable, str(PROBE), "count", "pose", "11"],
+        env=master.env,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    wait_for_subscriber(master, "/pose")
+    seen = run_probe(master, "scan-with-odom", "10")
+    assert seen["answered"] == pytest.approx([1e-9] + [step * 0.032 for step in range(1, 10)])
+    log = Path(master.log_path("bridge")).read_text()
+    assert seen["scans"][: len(seen["answered"])] == seen["answered"], (seen, log)  # each once
+    out, err = recorder.communicate(timeout=600)
+    assert recorder.returncode == 0, out + err
+    poses = json.loads(out.strip().splitlines()[-1])["data"]["pose"]
+    assert [round(pose[3] / 0.032) for pose in poses] == list(range(11))  # each state once
+    assert "publishing the reset state again" not in log
+
+
 def commands_on_sim_time(
     master: LocalMaster, tmp_path: Path, seed: int, *bridge_options: str
 ) -> tuple[list[dict[str, Any]], Path]:

@@ -18,6 +18,7 @@ import mazesim
 from mazesim.errors import InvalidActionError, InvalidArgumentError
 from mazesim.ros import standard
 from mazesim.ros.local_master import LocalMaster
+from mazesim.ros.occupancy import occupied_cells
 from ros_support import (
     REPO,
     needs_ros,
@@ -213,9 +214,12 @@ def test_standard_messages_agree_with_the_simulator(master: LocalMaster, tmp_pat
         by_name = {frame.frame: distance for frame, distance in zip(frames, distances)}
         assert row["ranges"] == pytest.approx(standard.scan_ranges(by_name), rel=1e-6)
 
-    # The sensor frames on the robot, and the scan's above it, sent once on /tf_static.
+    # The sensor frames on the robot, and the scan's above it, sent once on /tf_static, and the
+    # map's frame over odom's, the identity.
     statics = {row["child"]: row for row in seen["tf_static"]}
-    assert sorted(statics) == sorted([*(frame.frame for frame in frames), "laser_scanner"])
+    assert sorted(statics) == sorted([*(frame.frame for frame in frames), "laser_scanner", "odom"])
+    assert statics["odom"]["parent"] == "map"
+    assert statics["odom"]["pose"] == [0.0, 0.0, 0.0]
     assert statics["laser_scanner"]["parent"] == "base_link"
     assert statics["laser_scanner"]["height"] == pytest.approx(0.033)
     for frame in frames:
@@ -334,3 +338,16 @@ def test_the_ros_1_bridge_refuses_a_world_of_several_robots() -> None:
     ):
         refuse_several_robots(world)
     refuse_several_robots(mazesim.load_world("seed-maze"))  # one robot: accepted
+
+
+@needs_ros
+def test_a_node_waiting_for_the_map_gets_the_worlds_walls(master: LocalMaster) -> None:
+    # rospy.wait_for_message("map", OccupancyGrid), as a planner waits for map_server's map:
+    # latched, so it comes however late the node starts.
+    spawn_bridge(master, "--world", "seed-maze")
+    seen = run_probe(master, "map")
+    cells, x0, y0 = occupied_cells(mazesim.load_world("seed-maze"))
+    assert seen["frame"] == "map" and seen["resolution"] == pytest.approx(0.01)
+    assert (seen["height"], seen["width"]) == cells.shape
+    assert seen["origin"] == pytest.approx([x0, y0])
+    assert seen["occupied"] == int((cells == 100).sum()) > 0

@@ -118,8 +118,9 @@ def test_a_launched_bridge_drives_on_its_remapped_topics_in_its_namespace() -> N
 
 
 def test_a_call_of_a_service_of_the_bridge_is_explained_and_others_left_alone() -> None:
-    reason = why_no_service("/sim/set_parameters", "/sim")
-    assert reason is not None and "no parameters" in reason and "--seed" in reason
+    reason = why_no_service("/sim/get_loggers", "/sim")
+    assert reason is not None and "/sim/list_parameters" in reason and "--seed" in reason
+    assert why_no_service("/sim/set_parameters", "/sim") is None  # offered
     assert why_no_service("/go_to_pose/_action/send_goal", "/sim") is None
     assert why_no_service("/simulator/get_parameters", "/sim") is None
 
@@ -128,10 +129,10 @@ PARAMETER_CLIENT = (
     "from mazesim.ros2.node import Node\n"
     "from mazesim.ros2.qos import COMMAND\n"
     "node = Node('param_client')\n"
-    # ros2 param set's client of the launched bridge (its node name given by __node), and an
-    # action client of another node's server.
+    # A client of a service of the launched bridge's node that it does not offer (its node name
+    # given by __node; rclcpp's logger levels), and an action client of another node's server.
     "kept = [node._dds_writer(f'rq/{name}Request', 'std_msgs/msg/String', COMMAND,"
-    " ros_topic=False) for name in ('robot/sim/set_parameters', 'go_to_pose/_action/send_goal')]\n"
+    " ros_topic=False) for name in ('robot/sim/get_loggers', 'go_to_pose/_action/send_goal')]\n"
     + AWAIT_BACKGROUND
     + "await_background(0, 'a node calls the service')\n"
 )
@@ -139,13 +140,13 @@ PARAMETER_CLIENT = (
 
 @needs_ros2
 @needs_namespace
-def test_the_bridge_says_it_offers_no_parameters_to_a_parameter_client() -> None:
+def test_the_bridge_names_a_service_of_its_node_that_it_does_not_offer() -> None:
     result = run_in_namespace(
         [[*MAZESIM, "ros2", "bridge", "--mode", "free", "--ros-args", *LAUNCHED]],
         [sys.executable, "-c", PARAMETER_CLIENT],
         grace=1.0,
     )
     assert result.returncode == 0, result.stderr
-    message = "a node calls the service /robot/sim/set_parameters, which this bridge does not"
+    message = "a node calls the service /robot/sim/get_loggers, which this bridge does not"
     assert result.stderr.count(message) == 1, result.stderr
     assert "go_to_pose" not in result.stderr

@@ -106,7 +106,8 @@ def require_ros() -> Any:
     Returns:
         A namespace with ``rospy``, ``rosgraph``, ``Float64MultiArray``, ``MultiArrayDimension``,
         ``String``, ``Clock`` and the standard messages ``Range``, ``LaserScan``, ``Odometry``,
-        ``Twist``, ``TransformStamped``, ``TFMessage`` and ``PoseStamped``, and the service
+        ``OccupancyGrid``, ``Twist``, ``TransformStamped``, ``TFMessage`` and ``PoseStamped``,
+        and the service
         ``Empty`` (``std_srvs``) with ``EmptyResponse``.
 
     Raises:
@@ -116,7 +117,7 @@ def require_ros() -> Any:
         import rosgraph
         import rospy
         from geometry_msgs.msg import PoseStamped, TransformStamped, Twist
-        from nav_msgs.msg import Odometry
+        from nav_msgs.msg import OccupancyGrid, Odometry
         from rosgraph_msgs.msg import Clock
         from sensor_msgs.msg import LaserScan, Range
         from std_msgs.msg import Float64MultiArray, MultiArrayDimension, String
@@ -137,6 +138,7 @@ def require_ros() -> Any:
         Range=Range,
         LaserScan=LaserScan,
         Odometry=Odometry,
+        OccupancyGrid=OccupancyGrid,
         Twist=Twist,
         TransformStamped=TransformStamped,
         TFMessage=TFMessage,
@@ -226,19 +228,31 @@ def subscriber_count(rospy: Any, given: Any) -> int:
 
 
 def publisher(
-    ros: Any, topic: str, message_class: Any, synchronous: bool, latch: bool = False
+    ros: Any,
+    topic: str,
+    message_class: Any,
+    synchronous: bool,
+    latch: bool = False,
+    late: Any = None,
 ) -> Any:
     """Creates a publisher, synchronous or queued.
 
     A synchronous publisher (``queue_size=None``) writes to every subscriber inside ``publish``:
     nothing is dropped, and a slow subscriber slows the publisher, which is what lockstep wants.
-    A queued one keeps the latest 10 messages per subscriber and drops older ones.
+    A queued one keeps the latest 10 messages per subscriber and drops older ones. With ``late``
+    (a :class:`~mazesim.ros.latched.LateConnections`) it is latched that way instead of rospy's:
+    it says it latches, and ``late`` hands a subscription that connects the message it missed.
     """
     with warnings.catch_warnings():
         # rospy warns about queue_size=None, which is how it spells synchronous publishing.
         warnings.simplefilter("ignore", SyntaxWarning)
         return ros.rospy.Publisher(
-            topic, message_class, queue_size=None if synchronous else 10, latch=latch
+            topic,
+            message_class,
+            queue_size=None if synchronous else 10,
+            latch=latch and late is None,
+            subscriber_listener=late,
+            headers={"latching": "1"} if late is not None else None,
         )
 
 

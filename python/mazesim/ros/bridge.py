@@ -12,8 +12,9 @@ A ``cmd_vel`` twist is a command like the others. It runs in one of two modes:
   answers each ``sensors`` (or ``sensor_data``) message with one command, so no reading is ever
   missed or stale whatever the load, and a run is as deterministic as the in-process simulator.
   The state topics are latched: a controller that connects late still receives the state waiting
-  for its command. While a publisher of one of the command topics is connected and no command
-  has come ``RESEND_S`` seconds after a state went out, the bridge publishes that state again
+  for its command, once, in the order it went out (:mod:`mazesim.ros.latched`). While a
+  publisher of one of the command topics is connected and no command has come ``RESEND_S``
+  seconds after a state went out, the bridge publishes that state again
   (:class:`~mazesim.ros.lockstep.UnansweredState`, shared with the ROS 2 bridge): before the
   first command the reset state (a controller whose first command went out before the bridge
   listened, or that answers only from its second message, gets another), afterwards the last
@@ -70,6 +71,7 @@ from mazesim.errors import InvalidArgumentError, MazesimError, _shown
 from mazesim.ros import standard, topics
 from mazesim.ros._ros import publisher, start_node
 from mazesim.ros.bag import BagWriter
+from mazesim.ros.latched import LateConnections
 from mazesim.ros.lockstep import (
     IDLE_CLOCK_AFTER_S,
     RESEND_S,
@@ -248,6 +250,8 @@ class Bridge:
         self._goal_since: tuple[float, int] | None = None
         self._goals_answered = 0
         self.bag = BagWriter(ros, settings.bag) if settings.bag else None
+        #: Lockstep: the state topics' subscriptions that connected and have not had the state.
+        self.late = LateConnections()
         self._sending_again = False
         self._sensors_layout = self._layout(topics.sensor_names(simulator))
         self._pose_layout = self._layout(["x", "y", "yaw", "time"])
@@ -264,6 +268,17 @@ class Bridge:
                 topics.SENSOR_DATA_TOPIC, ros.Float64MultiArray
             )
         self.standard = StandardPublishers(ros, simulator, self._publisher)
+        #: The topics of the sensors' readings: a late subscription gets them after the motion.
+        self.sensing = {
+            made.resolved_name
+            for made in [
+                self.sensors_publisher,
+                self.sensor_data_publisher,
+                *self.standard.range_publishers,
+                self.standard.scan_publisher,
+            ]
+            if made is not None
+        }
         self.publish_state()
         self.unanswered.went_out(time.monotonic())
         # No queue limit: in lockstep every command is one step and none may be dropped.
@@ -290,12 +305,22 @@ class Bridge:
     def _publisher(self, topic: str, message_class: Any) -> Any:
         # Synchronous in lockstep: every subscriber (a recorder too) gets every step before the
         # next command is taken. Queued in real time: a slow subscriber loses old messages.
-        made = publisher(self.ros, topic, message_class, synchronous=self.lockstep, latch=True)
+        # Latched; in lockstep a late subscription gets the state once, in the order it went out
+        # (LateConnections).
+        made = publisher(
+            self.ros,
+            topic,
+            message_class,
+            synchronous=self.lockstep,
+            latch=True,
+            late=self.late if self.lockstep else None,
+        )
         return _Remembered(made, self._sent)
 
     def _sent(self, sent: tuple[Any, Any]) -> None:
         """Notes a message that went out (publisher, message): in the last state and the bag."""
         self.last_state.append(sent)
+        self.late.published(sent[0].resolved_name)
         if self.bag is not None and not self._sending_again:
             self.bag.write(sent[0].resolved_name, sent[1])
 
@@ -580,6 +605,7 @@ class Bridge:
             if stepped:
                 for made, message in list(self.last_state):
                     made.publish(message)
+                    self.late.published(made.resolved_name)
                 return
             self._sending_again = True  # the bag holds each state once
             try:
@@ -616,6 +642,9 @@ class Bridge:
                         rospy.resolve_name(standard.CMD_VEL_TOPIC),
                     )
                     started = math.inf
+                with self._lock:
+                    state = [(made.resolved_name, sent) for made, sent in self.last_state]
+                    self.late.hand_over(state, self.sensing)
                 self._resend_unanswered()
                 self.answer_goal()
                 wait = min(self.tick_idle_clock(), self.step_on_deadline())

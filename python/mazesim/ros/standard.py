@@ -17,7 +17,10 @@ for Webots does:
   distance sensors as one scan in frame ``laser_scanner``, as Webots' e-puck driver builds it
   (:func:`scan_ranges`);
 - ``/tf_static`` (``tf2_msgs/TFMessage``, latched, sent once): ``base_link`` -> each sensor frame,
-  from the sensor poses of the robot profile, and ``laser_scanner`` where there is a scan;
+  from the sensor poses of the robot profile, and ``laser_scanner`` where there is a scan; and
+  ``map`` -> ``odom``, the identity;
+- ``map`` (``nav_msgs/OccupancyGrid``, latched, sent once): the world's walls as ``map_server``
+  publishes a map (:mod:`mazesim.ros.occupancy`), in frame ``map``;
 - ``cmd_vel`` (``geometry_msgs/Twist``, subscribed): ``linear.x`` in m/s and ``angular.z`` in
   rad/s, turned into wheel speeds with the profile's wheel radius and axle length; when a wheel
   would exceed the motor limit both are scaled down by the same factor, so the robot keeps the
@@ -34,6 +37,7 @@ from typing import Any, NamedTuple
 
 from mazesim._core import RobotProfile, Simulator
 from mazesim.errors import InvalidActionError
+from mazesim.ros.occupancy import MAP_FRAME, MAP_RESOLUTION, MAP_TOPIC, occupied_cells
 
 __all__ = [
     "BASE_FRAME",
@@ -257,6 +261,25 @@ class StandardPublishers:
             TF_STATIC_TOPIC, ros.TFMessage, queue_size=1, latch=True
         )
         self.tf_static_publisher.publish(ros.TFMessage(transforms=self._sensor_transforms()))
+        # Latched and sent once, as map_server publishes a map (relative: in the bridge's
+        # namespace, as the other topics).
+        self.map_publisher = ros.rospy.Publisher(
+            MAP_TOPIC.lstrip("/"), ros.OccupancyGrid, queue_size=1, latch=True
+        )
+        self.map_publisher.publish(self._map())
+
+    def _map(self) -> Any:
+        """The world's walls as a ``nav_msgs/OccupancyGrid`` in frame ``map``."""
+        cells, x0, y0 = occupied_cells(self.simulator.world)
+        grid = self.ros.OccupancyGrid()
+        grid.header.stamp = self.ros.rospy.Time(0)
+        grid.header.frame_id = MAP_FRAME
+        grid.info.resolution = MAP_RESOLUTION
+        grid.info.height, grid.info.width = cells.shape
+        grid.info.origin.position.x, grid.info.origin.position.y = x0, y0
+        grid.info.origin.orientation.w = 1.0
+        grid.data = cells.ravel().tolist()
+        return grid
 
     def _transform(
         self, stamp: Any, parent: str, child: str, x: float, y: float, yaw: float
@@ -280,6 +303,7 @@ class StandardPublishers:
             scan = self._transform(stamp, BASE_FRAME, SCAN_FRAME, 0.0, 0.0, 0.0)
             scan.transform.translation.z = SCAN_HEIGHT
             transforms.append(scan)
+        transforms.append(self._transform(stamp, MAP_FRAME, ODOM_FRAME, 0.0, 0.0, 0.0))
         return transforms
 
     def publish(self, stamp: Any) -> None:

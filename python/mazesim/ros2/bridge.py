@@ -23,7 +23,8 @@ speeds. Topics and QoS: :mod:`mazesim.ros2.state`; the page ``docs/ros2.md``.
 
 The services ``/reset_simulation`` and ``/reset_world`` (``std_srvs/srv/Empty``, as Gazebo's
 ``gazebo_ros_init`` offers them; :mod:`mazesim.ros.resets` and :mod:`mazesim.ros2.services`)
-put the simulation back; the state after the reset goes out before the call is answered.
+put the simulation back; the state after the reset goes out before the call is answered. The
+node's parameter services answer ``ros2 param`` (:mod:`mazesim.ros2.parameters`).
 
 A world of several robots publishes each robot's topics in its own namespace and reads each
 robot's commands there (:mod:`mazesim.ros2.robots`), with one ``/clock``. In lockstep the world
@@ -63,6 +64,7 @@ from mazesim.ros2.clock import SIM_CONTROL_TOPIC, FreeRunning, stamp_nanoseconds
 from mazesim.ros2.node import Node, Reader
 from mazesim.ros2.nodes import leaves_signals_as_found
 from mazesim.ros2.occupancy import map_topics, occupancy_grid
+from mazesim.ros2.parameters import ParameterServers, bridge_parameters
 from mazesim.ros2.qos import CLOCK, COMMAND, TF_STATIC, IncompatibleQos, TopicQos
 from mazesim.ros2.robots import RobotOf, robot_namespaces
 from mazesim.ros2.ros_args import RosArguments
@@ -368,6 +370,8 @@ class Ros2Bridge:
         self.reset_servers = [
             (self.node.service_server(service_name(kind, ros1=False)), kind) for kind in RESETS
         ]
+        #: ``ros2 param list/get/set/describe``: ``use_sim_time`` and the settings, read-only.
+        self.parameters = ParameterServers(self.node, bridge_parameters(settings), self._say)
         self.node.announce()
         published = [writer.topic for writer in self.node.writers]
         self.unpublished = UnpublishedTopics(
@@ -592,7 +596,8 @@ class Ros2Bridge:
         command waiting, publishes the state after the reset (in lockstep the state the next
         command answers) and then answers the call."""
         for server, kind in self.reset_servers:
-            for header in server.take():
+            server.flush()
+            for request in server.take_requests():
                 self.resets.apply(kind)
                 from_the_start = kind == RESET_SIMULATION
                 if from_the_start:
@@ -609,7 +614,7 @@ class Ros2Bridge:
                 self.unanswered.went_out(time.monotonic())
                 self.deadline.commanded(time.monotonic())
                 self.resets_served += 1
-                server.reply(header)
+                server.reply(request)
 
     def wait_for_driver(self) -> None:
         """Lockstep: waits until a command writer or a reader of a state topic has matched (a
@@ -618,6 +623,7 @@ class Ros2Bridge:
         period."""
         while not self.stop.is_set():
             self._check_readers()
+            self.parameters.serve()
             if any(robot.driven() or robot.watched() for robot in self.robots):
                 self.stop.wait(READY_GRACE_S)
                 return
@@ -646,6 +652,7 @@ class Ros2Bridge:
                 self._step_pending()
                 self._step_on_deadline()
                 self._serve_resets()
+                self.parameters.serve()
                 self._check_readers()
                 self._greet_newcomers()
                 self._resend_unanswered()
@@ -813,6 +820,7 @@ class Ros2Bridge:
                 for speeds in robot.commands():
                     robot.wheel_speeds = speeds
             self._serve_resets()
+            self.parameters.serve()
             self._check_readers()
             delay = pace.due(self.simulator.time, control_step_s)
             if delay is None:

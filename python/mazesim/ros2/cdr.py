@@ -16,6 +16,7 @@ from collections.abc import Sequence
 from mazesim.errors import InvalidActionError
 
 __all__ = [
+    "CdrReader",
     "CdrWriter",
     "Stamp",
     "Transform",
@@ -396,6 +397,10 @@ class _Reader:
         raw = bytes(self.data[start : self.offset])
         # The length counts the closing NUL: only that one is dropped (the text may hold NULs).
         return (raw[:-1] if raw.endswith(b"\x00") else raw).decode()
+
+
+#: Reads the fields of a message of any layout, field by field.
+CdrReader = _Reader
 
 
 def decode_clock(data: bytes) -> int:

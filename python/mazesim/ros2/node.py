@@ -14,7 +14,7 @@ import uuid
 from typing import Any
 
 from mazesim.errors import MazesimIOError
-from mazesim.ros2 import graph, messages, network, services
+from mazesim.ros2 import graph, messages, network, parameters, services
 from mazesim.ros2._deps import require_ros2
 from mazesim.ros2.qos import GRAPH, TopicQos, cyclone_qos
 from mazesim.ros2.ros_args import RosArguments
@@ -58,6 +58,11 @@ class Writer:
         """The DDS instance handles of the readers matched now (a new subscription's are new)."""
         return set(self.dds.get_matched_subscriptions())
 
+    def reader_participants(self) -> set[Any]:
+        """The DDS keys of the participants of the readers matched now."""
+        found = (self.dds.get_matched_subscription_data(h) for h in self.matched_readers())
+        return {data.participant_key for data in found if data is not None}
+
 
 class Reader:
     """Receives the encoded messages of one topic."""
@@ -75,12 +80,22 @@ class Reader:
 
     def take(self, count: int = 64) -> list[bytes]:
         """The messages received since the last call, oldest first (at most ``count``)."""
+        return [data for data, _ in self.take_with_writers(count)]
+
+    def take_with_writers(self, count: int = 64) -> list[tuple[bytes, int]]:
+        """The messages received since the last call, oldest first, each with the DDS instance
+        handle of the writer that sent it."""
         result = self._take(self.dds._ref, self._mask, count)
         if isinstance(result, int):
             raise MazesimIOError(
                 f"expected DDS to hand over messages of {self.topic}; error {result}"
             )
-        return [data for data, info in result if info.valid_data]
+        return [(data, info.publication_handle) for data, info in result if info.valid_data]
+
+    def writer_participant(self, handle: int) -> Any:
+        """The DDS key of the participant of the matched writer ``handle`` (``None`` if gone)."""
+        data = self.dds.get_matched_publication_data(handle)
+        return None if data is None else data.participant_key
 
     def publishers(self) -> int:
         """How many writers are matched."""
@@ -193,13 +208,17 @@ class Node:
 
     def service_server(self, service: str, srvtype: str = services.EMPTY) -> services.ServiceServer:
         """A server of the ROS 2 service ``service`` (``/reset_simulation``) of ``srvtype``, a
-        service without fields (:mod:`mazesim.ros2.services`), under the name its remappings
-        give it."""
+        service without fields (:mod:`mazesim.ros2.services`) or a parameter service
+        (:mod:`mazesim.ros2.parameters`), under the name its remappings give it."""
         from cyclonedds.pub import DataWriter
         from cyclonedds.sub import DataReader
 
         service = self.resolve(service)
-        request, response = services.idl_types(srvtype)
+        request, response = (
+            services.idl_types(srvtype)
+            if srvtype == services.EMPTY
+            else parameters.idl_types(self.distro, srvtype)
+        )
         qos = cyclone_qos(services.SERVICE_QOS)
         requests = DataReader(
             self.participant,

@@ -10,9 +10,10 @@ only; ``__ns:=`` and ``__node:=`` (or ``__name:=``) set the namespace and the no
 ``-p``/``--param NAME:=VALUE`` and ``--params-file FILE`` set parameters; ``--log-level`` and the
 ``--enable-*``/``--disable-*`` logging flags; the section ends at ``--`` or the end.
 
-mazesim's nodes have no ROS parameters (their settings are their options), except
-``use_sim_time``, which every node takes and which changes nothing here: the bridge is the
-clock. Any other parameter is refused, saying which option to use, rather than dropped.
+mazesim's nodes take no ROS parameters (their settings are their options; the bridge shows its
+own read-only, :mod:`mazesim.ros2.parameters`), except ``use_sim_time``, which every node takes
+and which changes nothing here: the bridge is the clock. Any other parameter is refused, saying
+which option to use, rather than dropped.
 """
 
 from __future__ import annotations

@@ -23,6 +23,8 @@ import re
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from typing import Any
 
+from mazesim.ros2.parameters import PARAMETER_SERVICES
+
 __all__ = [
     "UnpublishedTopics",
     "also_published",
@@ -120,18 +122,19 @@ def other_type(
 
 
 def why_no_service(service: str, node: str) -> str | None:
-    """Why a node calling the ROS 2 service ``service`` (``/mazesim_bridge/set_parameters``) gets
-    no answer when it is a service of the bridge's node ``node`` (its full name), which offers
-    none (its only services are the resets, ``/reset_simulation`` and ``/reset_world``);
-    ``None`` for another node's service."""
-    if not service.startswith(node.rstrip("/") + "/"):
+    """Why a node calling the ROS 2 service ``service`` (``/mazesim_bridge/get_loggers``) gets
+    no answer when it is a service of the bridge's node ``node`` (its full name) that the bridge
+    does not offer (its services are the resets and its parameter services); ``None`` for
+    another node's service or one the bridge offers."""
+    prefix = node.rstrip("/") + "/"
+    if not service.startswith(prefix) or service[len(prefix) :] in PARAMETER_SERVICES:
         return None
     return (
-        f"a node calls the service {service}, which this bridge does not offer: its only "
-        "services are /reset_simulation and /reset_world (std_srvs/srv/Empty), and it has no "
-        "parameters (ros2 param waits for them, then gives up): its settings "
-        "are its command-line options (--world, --seed, --mode...), and use_sim_time it needs "
-        "no telling, being the clock; restart it to change them"
+        f"a node calls the service {service}, which this bridge does not offer: its services "
+        "are /reset_simulation and /reset_world (std_srvs/srv/Empty) and its parameter "
+        f"services ({node.rstrip('/')}/list_parameters, get_parameters, set_parameters...: "
+        "ros2 param), its settings read-only parameters named after its command-line options "
+        "(--world, --seed, --mode...): restart it to change them"
     )
 
 

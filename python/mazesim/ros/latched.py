@@ -1,0 +1,105 @@
+"""The lockstep ROS 1 bridge's latched state, handed to a subscription that connects late once,
+in the order the state went out.
+
+rospy's latched publisher sends its last message to each subscription as that subscription
+connects, in the order they connect. A node that answers each ``scan`` with the latest ``odom``
+and subscribes ``scan`` first received the latched scan before any odometry, skipped it, and
+waited 5 s for the state sent again. Sending the whole state again when a subscriber connects
+gave a recorder (``rosbag record``, ``rostopic echo``) connected earlier a second copy.
+
+The rule that holds for both: each state topic's connection gets the state it missed once, and
+not on connecting but when no new connection has come for :data:`QUIET_S` (a node's
+subscriptions connect within a few hundred milliseconds of each other), all such connections
+together, in two parts as the ROS 2 bridge sends its first state: the motion (``/clock``,
+``pose``, ``odom``, ``/tf``) first, the sensors' readings (``sensors``, the ranges, ``scan``)
+:data:`LEAD_S` later. rospy takes each connection's messages on a thread of its own, so messages
+sent one after the other on two connections may be served in either order; a quarter of a
+second apart, the node above has its odometry before the scan. A connection that receives a
+newer message on its topic meanwhile (a step) is not sent the old one. The publishers still say
+they are latching (the ``latching`` connection header), so ``rosbag`` records them as latched
+topics.
+"""
+
+from __future__ import annotations
+
+import threading
+import time
+from collections.abc import Callable, Container, Iterable
+from typing import Any
+
+__all__ = ["LEAD_S", "QUIET_S", "LateConnections"]
+
+#: Seconds without a new connection before the connections waiting get the state.
+QUIET_S = 0.5
+#: Seconds between the state's motion and its sensors' readings, handed to late connections.
+LEAD_S = 0.25
+
+
+class LateConnections:
+    """The connections of the bridge's state topics that have not had the state yet.
+
+    rospy calls :meth:`peer_subscribe` (as a ``rospy.SubscribeListener``) when a subscription of
+    one of the bridge's publishers connects, with a function that sends a message to that
+    connection only.
+    """
+
+    def __init__(self, quiet_s: float = QUIET_S, lead_s: float = LEAD_S) -> None:
+        self.quiet_s = quiet_s
+        self.lead_s = lead_s
+        self._lock = threading.Lock()
+        #: The topic and the send function of each connection waiting, in connection order.
+        self._waiting: list[tuple[str, Callable[[Any], None]]] = []
+        self._last_connected = -float("inf")
+        #: The connections of the sensors' topics waiting for the second part, and when.
+        self._sensing: list[tuple[str, Callable[[Any], None]]] = []
+        self._sensing_at = float("inf")
+        #: Connections handed the state so far.
+        self.handed = 0
+
+    def peer_subscribe(self, topic: str, publish_all: Any, publish_one: Any) -> None:
+        """rospy: a subscription of ``topic`` connected; ``publish_one`` sends to it alone."""
+        with self._lock:
+            self._waiting.append((topic, publish_one))
+            self._last_connected = time.monotonic()
+
+    def peer_unsubscribe(self, topic: str, connections: int) -> None:
+        """rospy: a subscription of ``topic`` went away (nothing to do: sending to a closed
+        connection does nothing)."""
+
+    def published(self, topic: str) -> None:
+        """Every connection of ``topic`` has had its newest message: none waits for the state
+        before it."""
+        with self._lock:
+            self._waiting = [entry for entry in self._waiting if entry[0] != topic]
+            self._sensing = [entry for entry in self._sensing if entry[0] != topic]
+
+    def hand_over(
+        self, state: Iterable[tuple[str, Any]], sensing: Container[str], now: float | None = None
+    ) -> int:
+        """Sends ``state`` (each message's topic and the message, in the order they went out) to
+        the connections waiting, once :data:`QUIET_S` has passed since the last one connected:
+        the motion first, the topics of ``sensing`` (the sensors' readings) :data:`LEAD_S`
+        after the last motion handed over, so that a node's odometry callback has run before
+        its scan callback (each connection's messages are taken on a thread of its own).
+        Returns how many connections it sent to."""
+        now = time.monotonic() if now is None else now
+        state = list(state)
+        with self._lock:
+            waiting: list[tuple[str, Callable[[Any], None]]] = []
+            if self._waiting and now - self._last_connected >= self.quiet_s:
+                waiting, self._waiting = self._waiting, []
+                # Every reading waiting goes LEAD_S after the last motion handed over.
+                self._sensing += [entry for entry in waiting if entry[0] in sensing]
+                self._sensing_at = now + self.lead_s
+            sensing_due: list[tuple[str, Callable[[Any], None]]] = []
+            if self._sensing and now >= self._sensing_at:
+                sensing_due, self._sensing = self._sensing, []
+        for entries, part in ((waiting, False), (sensing_due, True)):
+            for topic, message in state:
+                if (topic in sensing) != part:
+                    continue
+                for waiting_topic, publish_one in entries:
+                    if waiting_topic == topic:
+                        publish_one(message)
+        self.handed += len(waiting)
+        return len(waiting)
