@@ -12,7 +12,7 @@ from __future__ import annotations
 import functools
 from typing import Any
 
-from mazesim.errors import InvalidArgumentError, _shown
+from mazesim.errors import InvalidArgumentError, _known_name, _shown
 from mazesim.ros2._deps import require_ros2
 
 __all__ = [
@@ -37,11 +37,7 @@ def check_distro(distro: str) -> str:
     Raises:
         InvalidArgumentError: Another name.
     """
-    if distro not in DISTROS:
-        raise InvalidArgumentError(
-            f"expected a ROS 2 distribution, one of {', '.join(DISTROS)}; found {_shown(distro)}"
-        )
-    return distro
+    return _known_name(distro, "a ROS 2 distribution", tuple(DISTROS))
 
 
 @functools.cache

@@ -22,7 +22,7 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import NamedTuple
 
-from mazesim.errors import InvalidArgumentError, _shown
+from mazesim.errors import InvalidArgumentError, _known_name, _shown
 
 __all__ = ["RosArguments", "split_ros_arguments"]
 
@@ -99,13 +99,14 @@ def _parameters_in_file(path: str) -> list[str]:
 
 
 def _check_parameter(name: str, where: str) -> None:
-    if name not in ACCEPTED_PARAMETERS:
-        option = "--" + name.replace("_", "-")
-        raise InvalidArgumentError(
-            f"expected no ROS parameter other than use_sim_time ({where}): mazesim's ROS 2 "
-            f"nodes have none, their settings are their options (perhaps {option}); found "
-            f"{_shown(name)}"
-        )
+    option = "--" + str(name).replace("_", "-")
+    _known_name(
+        name,
+        f"a ROS parameter ({where})",
+        tuple(ACCEPTED_PARAMETERS),
+        ": mazesim's ROS 2 nodes have no other, their settings are their options "
+        f"(perhaps {option})",
+    )
 
 
 def split_ros_arguments(arguments: Sequence[str]) -> tuple[list[str], RosArguments]:

@@ -98,12 +98,7 @@ class Axis:
             InvalidArgumentError: A level of the wrong kind or outside the documented range.
         """
         if self.names:
-            if not isinstance(level, str) or level not in self.names:
-                raise InvalidArgumentError(
-                    f"axis {_shown(self.name)}: expected one of {', '.join(self.names)}, found "
-                    f"{_shown(level)}"
-                )
-            return level
+            return _known_name(level, f"a level of axis {_shown(self.name)}", self.names)
         if isinstance(level, str) or not math.isfinite(level):
             raise InvalidArgumentError(
                 f"axis {_shown(self.name)}: expected a number, found {_shown(level)}"

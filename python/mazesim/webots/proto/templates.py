@@ -17,7 +17,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from mazesim._paths import read_input
-from mazesim.errors import InvalidArgumentError, _shown
+from mazesim.errors import _known_name
 
 from .syntax import located_error
 from .template_modules import JAVASCRIPT_MODULES, LUA_MODULES
@@ -339,11 +339,7 @@ def evaluate_template(
     Raises:
         WorldFormatError: The template does not run (with the engine's message).
     """
-    if language not in ("javascript", "lua"):
-        raise InvalidArgumentError(
-            f"evaluate_template: expected the language 'javascript' or 'lua' of {origin}, "
-            f"found {_shown(language)}"
-        )
+    _known_name(language, f"evaluate_template's language of {origin}", ("javascript", "lua"))
     body = without_comments(body)
     if language == "javascript":
         return _javascript(body, fields, context, origin)
