@@ -75,6 +75,10 @@ WRONG_TYPES: dict[str, Callable[[], Any]] = {
     "seed bool": lambda: mazesim.Simulator(_arena(), seed=True),
     # int() read it as 1, without a word.
     "seed of True": lambda: _unseen_mazes(1, True),
+    # The compiled module's private entry points, whose parameters are of plain types that pyo3
+    # converts: its refusal was an InvalidArgumentError only, not naming the argument.
+    "temporary file name int": lambda: mazesim._core._temporary_writing(5),
+    "temporary writing text": lambda: mazesim._core._temporary_writing("a.tmp", "yes"),
     # gymnasium asks the env's render modes whether they hold 42 before the env is made; it
     # failed inside gymnasium (AttributeError: 'int' object has no attribute 'endswith').
     "gymnasium.make render mode int": lambda: _make(render_mode=42),
