@@ -33,7 +33,13 @@ import numpy as np
 import numpy.typing as npt
 
 from mazesim._core import __version__
-from mazesim.errors import InvalidArgumentError, UnknownNameError, _known_name, _shown
+from mazesim.errors import (
+    InvalidArgumentError,
+    RegisteredName,
+    UnknownNameError,
+    _known_name,
+    _shown,
+)
 
 if TYPE_CHECKING:
     from mazesim.distributed.config import Setting
@@ -123,7 +129,7 @@ def _trainer_function(name: str) -> Callable[[Setting, int], dict[str, Any]] | N
     return function if callable(function) else None
 
 
-def resolve_trainer(name: str) -> str:
+def resolve_trainer(name: RegisteredName) -> str:
     """The registered trainer that ``name`` stands for (``"auto"``: see :data:`AUTO_ORDER`).
 
     Raises:

@@ -587,7 +587,7 @@ def _vector_keywords(vector_kwargs: Any, **given: Any) -> dict[str, Any]:
     return {**given, **vector_kwargs}
 
 
-def _autoreset_mode(mode: AutoresetMode | str) -> AutoresetMode:
+def _autoreset_mode(mode: AutoresetMode | RegisteredName) -> AutoresetMode:
     """The autoreset mode of ``mode`` (the mode or its value); raises UnknownNameError for a
     stranger, with the value meant for one spelt otherwise ("next_step", "NEXT_STEP")."""
     modes = {m.value: m for m in AutoresetMode}

@@ -22,7 +22,7 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import NamedTuple
 
-from mazesim.errors import InvalidArgumentError, _known_name, _shown
+from mazesim.errors import InvalidArgumentError, RegisteredName, _known_name, _shown
 
 __all__ = ["RosArguments", "split_ros_arguments"]
 
@@ -98,7 +98,7 @@ def _parameters_in_file(path: str) -> list[str]:
     return names
 
 
-def _check_parameter(name: str, where: str) -> None:
+def _check_parameter(name: RegisteredName, where: str) -> None:
     option = "--" + str(name).replace("_", "-")
     _known_name(
         name,

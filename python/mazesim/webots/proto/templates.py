@@ -17,7 +17,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from mazesim._paths import read_input
-from mazesim.errors import _known_name
+from mazesim.errors import RegisteredName, _known_name
 
 from .syntax import located_error
 from .template_modules import JAVASCRIPT_MODULES, LUA_MODULES
@@ -325,7 +325,11 @@ def _lua(body: str, fields: dict[str, Any], context: dict[str, Any], origin: str
 
 
 def evaluate_template(
-    language: str, body: str, fields: dict[str, Any], context: dict[str, Any], origin: str
+    language: RegisteredName,
+    body: str,
+    fields: dict[str, Any],
+    context: dict[str, Any],
+    origin: str,
 ) -> str:
     """The text a procedural PROTO body generates.
 
