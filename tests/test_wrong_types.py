@@ -156,3 +156,13 @@ def test_the_binding_and_the_python_side_name_a_wrong_type_alike(found: str) -> 
     from mazesim._checks import refusal
 
     assert re.search(f"found {found}( |$)", str(refusal(value, dict))), refusal(value, dict)
+
+
+def test_a_path_object_giving_another_type_is_refused_saying_what_it_gives() -> None:
+    # os.fspath refuses an int from __fspath__ with its own TypeError, which was read as None.
+    class GivesAnInt:
+        def __fspath__(self) -> Any:
+            return 5
+
+    with pytest.raises(mazesim.WrongTypeError, match="whose __fspath__ gives an int$"):
+        mazesim.load_world(GivesAnInt())  # type: ignore[arg-type]

@@ -331,9 +331,7 @@ def _path_of(value: object, name: str) -> str:
         # A path object's own code may fail in any way: it names no path, as the compiled
         # core's path arguments say of it (never the object's own exception escaping).
         try:
-            value = os.fspath(value)
-        except TypeError:  # it gives neither str nor bytes
-            value = None
+            value = type(value).__fspath__(value)  # what it gives, whatever its type
         except Exception as error:  # noqa: BLE001 - any failure of user code is the same refusal
             raise WrongTypeError(
                 f"expected {name} to be a str or os.PathLike, found {found} whose __fspath__ "
