@@ -75,6 +75,10 @@ WRONG_TYPES: dict[str, Callable[[], Any]] = {
     "seed bool": lambda: mazesim.Simulator(_arena(), seed=True),
     # int() read it as 1, without a word.
     "seed of True": lambda: _unseen_mazes(1, True),
+    # The compiled module's private entry points, whose parameters are of plain types that pyo3
+    # converts: its refusal was an InvalidArgumentError only, not naming the argument.
+    "temporary file name int": lambda: mazesim._core._temporary_writing(5),
+    "temporary writing text": lambda: mazesim._core._temporary_writing("a.tmp", "yes"),
     # gymnasium asks the env's render modes whether they hold 42 before the env is made; it
     # failed inside gymnasium (AttributeError: 'int' object has no attribute 'endswith').
     "gymnasium.make render mode int": lambda: _make(render_mode=42),
@@ -152,3 +156,13 @@ def test_the_binding_and_the_python_side_name_a_wrong_type_alike(found: str) -> 
     from mazesim._checks import refusal
 
     assert re.search(f"found {found}( |$)", str(refusal(value, dict))), refusal(value, dict)
+
+
+def test_a_path_object_giving_another_type_is_refused_saying_what_it_gives() -> None:
+    # os.fspath refuses an int from __fspath__ with its own TypeError, which was read as None.
+    class GivesAnInt:
+        def __fspath__(self) -> Any:
+            return 5
+
+    with pytest.raises(mazesim.WrongTypeError, match="whose __fspath__ gives an int$"):
+        mazesim.load_world(GivesAnInt())  # type: ignore[arg-type]

@@ -116,7 +116,7 @@ def world_files_beside(path: str, suffixes: tuple[str, ...] = (".toml", ".wbt"))
                     break
                 if entry.name.lower().endswith(suffixes):
                     names.append(os.path.join(folder, entry.name))
-    except OSError:
+    except (OSError, ValueError):  # ValueError: a NUL character, which no folder's name holds
         return []
     return sorted(names)
 
@@ -147,6 +147,8 @@ def unknown_name_or_file(
     looked = os.path.join(folder_of_names, path) if folder_of_names else path
     try:
         found = f"it is {_kind_of(os.stat(looked).st_mode)}, not a {kind} file"
+    except ValueError:  # a NUL character, which the system refuses before looking
+        found = "no path holds a NUL character"
     except OSError as unreadable:
         found = unreadable.strerror.lower() if unreadable.strerror else "no such file"
         if unreadable.errno == errno.ENOENT and is_path:

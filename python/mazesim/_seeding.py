@@ -20,7 +20,7 @@ from __future__ import annotations
 import numpy as np
 import numpy.typing as npt
 
-from mazesim.errors import InvalidArgumentError, _shown
+from mazesim.errors import InvalidArgumentError, RegisteredName, _known_name, _shown
 
 __all__ = ["STREAMS", "seed_sequence", "stream", "stream_seeds"]
 
@@ -53,7 +53,7 @@ STREAMS: dict[str, tuple[int, int]] = {
 }
 
 
-def seed_sequence(seed: int, name: str, *index: int) -> np.random.SeedSequence:
+def seed_sequence(seed: int, name: RegisteredName, *index: int) -> np.random.SeedSequence:
     """The seed sequence of stream ``name`` of a run's ``seed``.
 
     Args:
@@ -64,10 +64,7 @@ def seed_sequence(seed: int, name: str, *index: int) -> np.random.SeedSequence:
     Raises:
         InvalidArgumentError: An unknown name, a wrong number of indices, or a negative value.
     """
-    if name not in STREAMS:
-        raise InvalidArgumentError(
-            f"expected a random stream named one of {', '.join(STREAMS)}, found {_shown(name)}"
-        )
+    _known_name(name, "the name of a random stream", tuple(STREAMS))
     tag, arity = STREAMS[name]
     if len(index) != arity:
         raise InvalidArgumentError(

@@ -29,7 +29,7 @@ from mazesim._core import RobotProfile, World
 from mazesim._seeding import seed_sequence
 from mazesim._seeding import stream as random_stream
 from mazesim.batch import CONTROL_STEP_MS, RobotBatch, RobotChoice, cruise_step_length
-from mazesim.errors import InvalidArgumentError, RegisteredName, _shown
+from mazesim.errors import InvalidArgumentError, RegisteredName, _known_name, _shown
 from mazesim.maze import CellMaze, navigator_problems
 
 __all__ = [
@@ -132,10 +132,7 @@ class EpisodeBatch:
         threads: int = 0,
         robot: RobotChoice = "seed",
     ) -> None:
-        if events not in EVENT_SOURCES:
-            raise InvalidArgumentError(
-                f"expected events from one of {', '.join(EVENT_SOURCES)}, found {_shown(events)}"
-            )
+        _known_name(events, "events", tuple(EVENT_SOURCES))
         self.worlds = list(worlds)
         if not self.worlds:
             raise InvalidArgumentError("expected at least one world, found none")

@@ -15,6 +15,7 @@ from __future__ import annotations
 import difflib
 import os
 import re
+from collections.abc import Collection
 from typing import Annotated
 
 __all__ = [
@@ -159,15 +160,17 @@ class _Registered:
 RegisteredName = Annotated[str, _Registered()]
 
 
-def _known_name(value: object, what: str, known: list[str] | tuple[str, ...]) -> str:
+def _known_name(value: object, what: str, known: Collection[str], hint: str = "") -> str:
     """``value`` when it is one of the ``known`` names of ``what``; else the one refusal of a
     name no registry of mazesim holds: an :class:`UnknownNameError` listing the known names
-    (``available``) and the closest as a "did you mean"."""
+    (``available``), then ``hint`` (what to do instead, if anything), and the closest as a "did
+    you mean". A value of any type is refused so, never hashed: a list or a dict where a name
+    goes is refused as an unknown name, not as Python's unhashable ``TypeError``."""
     if isinstance(value, str) and value in known:
         return value
     names = [str(each) for each in known]
     raise UnknownNameError(
-        f"expected {what} to be one of {', '.join(names)}; found {_shown(value)}",
+        f"expected {what} to be one of {', '.join(names)}; found {_shown(value)}{hint}",
         available=names,
         name=value if isinstance(value, str) else None,
     )
@@ -182,6 +185,10 @@ def _closest_name(name: str | None, available: list[str] | None, cutoff: float =
     if name is None or not available:
         return None
     typed = _spelling(str(name))
+    # A name spelt in another case or with other separators ("next_step" for "NextStep").
+    alike = {str(each) for each in available if _plain(_spelling(str(each))) == _plain(typed)}
+    if len(alike) == 1:
+        return alike.pop()
     scored = [
         (difflib.SequenceMatcher(None, _spelling(str(each)), typed).ratio(), str(each))
         for each in available
@@ -196,6 +203,11 @@ def _closest_name(name: str | None, available: list[str] | None, cutoff: float =
         if len(typed) >= 2 and _spelling(str(each)).lower().startswith(typed.lower())
     }
     return longer.pop() if len(longer) == 1 else None
+
+
+def _plain(name: str) -> str:
+    """``name`` as compared for a name spelt otherwise: lower case, without ``_`` and ``-``."""
+    return name.replace("_", "").replace("-", "").lower()
 
 
 def _spelling(name: str) -> str:
@@ -319,9 +331,7 @@ def _path_of(value: object, name: str) -> str:
         # A path object's own code may fail in any way: it names no path, as the compiled
         # core's path arguments say of it (never the object's own exception escaping).
         try:
-            value = os.fspath(value)
-        except TypeError:  # it gives neither str nor bytes
-            value = None
+            value = type(value).__fspath__(value)  # what it gives, whatever its type
         except Exception as error:  # noqa: BLE001 - any failure of user code is the same refusal
             raise WrongTypeError(
                 f"expected {name} to be a str or os.PathLike, found {found} whose __fspath__ "

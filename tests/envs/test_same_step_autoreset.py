@@ -13,7 +13,7 @@ from gymnasium.vector import AutoresetMode  # noqa: E402
 
 from env_worlds import CORRIDOR  # noqa: E402
 from mazesim.envs import ENV_ID, EPuckMazeVectorEnv  # noqa: E402
-from mazesim.errors import InvalidArgumentError  # noqa: E402
+from mazesim.errors import UnknownNameError  # noqa: E402
 
 
 def assert_same_info(mine: dict[str, Any], theirs: dict[str, Any], where: str) -> None:
@@ -76,9 +76,9 @@ def test_same_step_autoreset_equals_sync_vector_env(world: str, tmp_path: Any) -
 
 
 def test_an_unknown_autoreset_mode_is_refused() -> None:
-    with pytest.raises(InvalidArgumentError, match="autoreset_mode.*Disabled.*found 'Never'"):
+    with pytest.raises(UnknownNameError, match="autoreset_mode.*Disabled.*found 'Never'"):
         EPuckMazeVectorEnv(num_envs=2, autoreset_mode="Never")
-    with pytest.raises(InvalidArgumentError) as refused:
+    with pytest.raises(UnknownNameError) as refused:
         EPuckMazeVectorEnv(num_envs=2, autoreset_mode="Never")
     assert "did you mean" not in str(refused.value)
 
@@ -88,5 +88,5 @@ def test_an_unknown_autoreset_mode_is_refused() -> None:
     [("next_step", "NextStep"), ("SAME_STEP", "SameStep"), ("disabled", "Disabled")],
 )
 def test_a_mode_spelt_otherwise_is_told_gymnasiums_spelling(spelt: str, meant: str) -> None:
-    with pytest.raises(InvalidArgumentError, match=f"found '{spelt}'; did you mean '{meant}'\\?$"):
+    with pytest.raises(UnknownNameError, match=f"found '{spelt}'; did you mean '{meant}'\\?$"):
         EPuckMazeVectorEnv(num_envs=2, autoreset_mode=spelt)

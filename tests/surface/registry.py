@@ -367,11 +367,31 @@ def _modules() -> Iterator[Any]:
             continue  # an optional extra that is not installed
 
 
+#: The private entry points of the compiled module not walked: the one that panics on purpose
+#: (its panic must come out as an InternalError, which a test of the panic guard checks).
+PRIVATE_NOT_WALKED = ("_panic_for_tests",)
+
+
+def _private_compiled(module: Any) -> list[str]:
+    """The compiled module's private functions (``_temporary_writing``): called by the package
+    only, with arguments of plain types that pyo3 converts, but reachable, so walked too."""
+    if module.__name__ != "mazesim._core":
+        return []
+    return [
+        name
+        for name in dir(module)
+        if name.startswith("_")
+        and not name.startswith("__")
+        and name not in PRIVATE_NOT_WALKED
+        and inspect.isbuiltin(getattr(module, name))
+    ]
+
+
 def _public(module: Any) -> Iterator[tuple[str, Any]]:
     """The module's public functions and classes, as mazesim._checks defines them (exceptions,
     protocols and enums are types to catch or to match, not to call; an abstract class's methods
-    are called on one of its implementations)."""
-    for name in public_names(module):
+    are called on one of its implementations), and the compiled module's private functions."""
+    for name in [*public_names(module), *_private_compiled(module)]:
         obj = getattr(module, name)
         if inspect.isclass(obj) and (
             issubclass(obj, (BaseException, enum.Enum)) or getattr(obj, "_is_protocol", False)

@@ -26,7 +26,8 @@ use pyo3::ffi;
 use pyo3::prelude::*;
 use pyo3::types::{PyCFunction, PyDict, PyTuple, PyType};
 
-use crate::errors::invalid;
+use crate::args::with_article;
+use crate::errors::{invalid, wrong_type};
 
 /// The start of a method descriptor (CPython's `PyMethodDescrObject`, a method or class method).
 #[repr(C)]
@@ -173,7 +174,9 @@ unsafe fn call_slot(
 }
 
 /// Replaces the pending exception, when it is exactly a `TypeError` (pyo3's or CPython's
-/// refusal of the arguments), with an `InvalidArgumentError` of the same message.
+/// refusal of the arguments), with an `InvalidArgumentError` of the same message; a `WrongTypeError`
+/// naming the argument when pyo3 refused an argument's type (a parameter of a plain type, such
+/// as `bool` or `String`, given another).
 fn retag(py: Python<'_>) {
     // SAFETY: the GIL is held; PyErr_Occurred returns a borrowed pointer or null.
     let pending = unsafe { ffi::PyErr_Occurred() };
@@ -182,7 +185,54 @@ fn retag(py: Python<'_>) {
         return;
     }
     if let Some(refused) = PyErr::take(py) {
-        invalid(refused.value(py).to_string()).restore(py);
+        let message = refused.value(py).to_string();
+        match converted_argument(py, &refused, &message) {
+            Some(argument) => wrong_type(format!("{argument}{}", expected_found(&message))),
+            None => invalid(message),
+        }
+        .restore(py);
+    }
+}
+
+/// pyo3's refusal of a conversion ("'int' object is not an instance of 'str'", "'None' is not
+/// an instance of 'bool'") said as the package says it ("expected a str, found an int"); any
+/// other message as it is.
+fn expected_found(message: &str) -> String {
+    let Some((found, expected)) = message.split_once(" is not an instance of ") else {
+        return message.to_string();
+    };
+    let unquoted = |text: &str| text.trim().trim_matches('\'').to_string();
+    let found = unquoted(found.trim_end_matches(" object"));
+    let found = if found == "None" {
+        found
+    } else {
+        with_article(&found)
+    };
+    format!(
+        "expected {}, found {found}",
+        with_article(&unquoted(expected))
+    )
+}
+
+/// When pyo3 refused an argument's conversion with `refused`, what names the argument ahead of
+/// the message ("argument 'name': ", or "" when pyo3 did not note it); None for a refusal of the
+/// arguments' number or names. pyo3 notes "while processing 'name'" on the refusal of a
+/// conversion (Python 3.11 and later), and says "... is not an instance of ..." in any case.
+fn converted_argument(py: Python<'_>, refused: &PyErr, message: &str) -> Option<String> {
+    const NOTED: &str = "while processing ";
+    let notes = refused.value(py).getattr("__notes__").ok();
+    let noted = notes
+        .and_then(|notes| notes.extract::<Vec<String>>().ok())
+        .and_then(|notes| {
+            notes
+                .into_iter()
+                .find_map(|n| n.strip_prefix(NOTED).map(str::to_string))
+        });
+    match noted {
+        Some(argument) => Some(format!("argument {argument}: ")),
+        None => message
+            .contains(" is not an instance of ")
+            .then(String::new),
     }
 }
 

@@ -12,6 +12,7 @@ mod lower;
 mod lower_settings;
 mod maze;
 mod navigator;
+mod once_made;
 mod perturbation;
 mod profile;
 mod run;
@@ -99,19 +100,9 @@ fn _temporary_writing(name: std::ffi::OsString, writing: Option<bool>) -> bool {
     mazesim_core::temporary_files::is_writing(&name)
 }
 
-/// Makes the state made once, on first use, ready while the import holds the interpreter alone:
-/// numpy's C API, the array borrow registry and what the buffer checks use. A process forked
-/// while another thread was making one would find it half-made in the child and wait for it for
-/// ever.
-fn ready_once_made_state(py: Python<'_>) -> PyResult<()> {
-    let probe = numpy::PyArray1::<f32>::zeros(py, 1, false);
-    numpy::PyArrayMethods::try_readwrite(&probe)?;
-    buffers::ready(py)
-}
-
 #[pymodule]
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
-    ready_once_made_state(m.py())?;
+    once_made::ready(m.py())?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("EPUCK_DEFAULT_CONTROLLER", EPUCK_DEFAULT_CONTROLLER)?;
     m.add_function(wrap_pyfunction!(builtin_world_names, m)?)?;

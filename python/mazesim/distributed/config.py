@@ -37,7 +37,7 @@ import itertools
 import json
 import math
 import os
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass
 from typing import Any
 
@@ -46,8 +46,8 @@ from mazesim._paths import found_kind, read_text, unknown_name_or_file
 from mazesim._toml import load_toml
 from mazesim.errors import (
     InvalidArgumentError,
-    UnknownNameError,
     WorldFormatError,
+    _known_name,
     _shown,
 )
 
@@ -255,21 +255,17 @@ def _check_value(parameter: Parameter, value: Any, where: str) -> Any:
     return converted
 
 
-def _unknown(source: str, table: str, key: str, available: list[str]) -> UnknownNameError:
-    return UnknownNameError(
-        f"{source}: unknown key {table}{key!r}; expected one of {', '.join(available)}",
-        available=available,
-        name=key,
-    )
+def _known_keys(source: str, table: str, given: Iterable[object], available: list[str]) -> None:
+    """Refuses the first key of ``given`` (a table of the file ``source``) not ``available``."""
+    for key in given:
+        _known_name(key, f"{source}: a key of {table or 'the file'}", available)
 
 
 def _read_grid(source: str, grid: Any) -> dict[str, tuple[Any, ...]]:
     """Each parameter's values (a 1-tuple for a single value), checked, in expansion order."""
     if not isinstance(grid, dict):
         raise InvalidArgumentError(f"{source}: expected a [grid] table, found {_shown(grid)}")
-    for key in grid:
-        if key not in _BY_NAME:
-            raise _unknown(source, "grid.", key, [p.name for p in PARAMETERS])
+    _known_keys(source, "[grid]", grid, [p.name for p in PARAMETERS])
     values: dict[str, tuple[Any, ...]] = {}
     for parameter in PARAMETERS:
         given = grid.get(parameter.name, parameter.default)
@@ -371,15 +367,11 @@ def parse_sweep_config(
             f"{source}: expected a sweep file (a [sweep] and a [grid] table), found {kind}"
         )
     document = load_toml(text, source)
-    for key in document:
-        if key not in ("sweep", "grid"):
-            raise _unknown(source, "", key, ["sweep", "grid"])
+    _known_keys(source, "", document, ["sweep", "grid"])
     sweep = document.get("sweep", {})
     if not isinstance(sweep, dict):
         raise InvalidArgumentError(f"{source}: expected a [sweep] table, found {_shown(sweep)}")
-    for key in sweep:
-        if key not in _SWEEP_KEYS:
-            raise _unknown(source, "sweep.", key, list(_SWEEP_KEYS))
+    _known_keys(source, "[sweep]", sweep, list(_SWEEP_KEYS))
     stem = os.path.splitext(os.path.basename(source))[0] or "sweep"
     name = sweep.get("name", stem if source != "<string>" else "sweep")
     if not isinstance(name, str) or not name:

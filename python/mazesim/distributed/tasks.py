@@ -33,7 +33,13 @@ import numpy as np
 import numpy.typing as npt
 
 from mazesim._core import __version__
-from mazesim.errors import InvalidArgumentError, UnknownNameError, _shown
+from mazesim.errors import (
+    InvalidArgumentError,
+    RegisteredName,
+    UnknownNameError,
+    _known_name,
+    _shown,
+)
 
 if TYPE_CHECKING:
     from mazesim.distributed.config import Setting
@@ -123,7 +129,7 @@ def _trainer_function(name: str) -> Callable[[Setting, int], dict[str, Any]] | N
     return function if callable(function) else None
 
 
-def resolve_trainer(name: str) -> str:
+def resolve_trainer(name: RegisteredName) -> str:
     """The registered trainer that ``name`` stands for (``"auto"``: see :data:`AUTO_ORDER`).
 
     Raises:
@@ -133,14 +139,8 @@ def resolve_trainer(name: str) -> str:
         for candidate in AUTO_ORDER:
             if candidate in TRAINERS and _trainer_function(candidate) is not None:
                 return candidate
-    if name not in TRAINERS or _trainer_function(name) is None:
-        available = [n for n in TRAINERS if _trainer_function(n) is not None]
-        raise UnknownNameError(
-            f"expected a trainer among auto, {', '.join(available)}; found {_shown(name)}",
-            available=["auto", *available],
-            name=name,
-        )
-    return name
+    available = [n for n in TRAINERS if _trainer_function(n) is not None]
+    return _known_name(name, "a trainer", ("auto", *available)) if name != "auto" else name
 
 
 def check_parameters(params: Mapping[str, Any], where: str = "grid") -> None:

@@ -45,7 +45,14 @@ from mazesim.envs.options import (
 )
 from mazesim.envs.reward import step_reward
 from mazesim.envs.spaces import ActionConverter, ObservationLayout, sensor_ranges
-from mazesim.errors import InvalidArgumentError, RegisteredName, WrongTypeError, _a_type, _shown
+from mazesim.errors import (
+    InvalidArgumentError,
+    RegisteredName,
+    WrongTypeError,
+    _a_type,
+    _known_name,
+    _shown,
+)
 from mazesim.maze import GoalDistance, PathDistanceTable
 from mazesim.render.episode import EpisodeTrace
 from mazesim.render.topdown import TopDownRenderer
@@ -580,17 +587,10 @@ def _vector_keywords(vector_kwargs: Any, **given: Any) -> dict[str, Any]:
     return {**given, **vector_kwargs}
 
 
-def _autoreset_mode(mode: AutoresetMode | str) -> AutoresetMode:
-    """The autoreset mode of ``mode``; raises InvalidArgumentError for a stranger."""
-    modes = (AutoresetMode.NEXT_STEP, AutoresetMode.SAME_STEP, AutoresetMode.DISABLED)
-    for known in modes:
-        if mode is known or mode == known.value:
-            return known
-    names = ", ".join(f"AutoresetMode.{m.name} ({m.value!r})" for m in modes)
-    # A mode written in another case or with underscores ("next_step", "NEXT_STEP").
-    spelt = str(mode).replace("_", "").replace("-", "").lower()
-    meant = [m for m in modes if spelt in (m.value.lower(), m.name.replace("_", "").lower())]
-    raise InvalidArgumentError(
-        f"expected autoreset_mode to be one of {names}; found {_shown(mode)}"
-        + (f"; did you mean {_shown(meant[0].value)}?" if meant else "")
-    )
+def _autoreset_mode(mode: AutoresetMode | RegisteredName) -> AutoresetMode:
+    """The autoreset mode of ``mode`` (the mode or its value); raises UnknownNameError for a
+    stranger, with the value meant for one spelt otherwise ("next_step", "NEXT_STEP")."""
+    modes = {m.value: m for m in AutoresetMode}
+    if isinstance(mode, AutoresetMode):
+        return mode
+    return modes[_known_name(mode, "autoreset_mode (an AutoresetMode or its value)", tuple(modes))]

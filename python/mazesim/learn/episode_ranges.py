@@ -30,7 +30,7 @@ import numpy.typing as npt
 
 from mazesim._core import RobotProfile, World
 from mazesim.episodes import EpisodeBatch, EpisodeResult, run_episodes
-from mazesim.errors import InvalidArgumentError, _shown
+from mazesim.errors import InvalidArgumentError, _known_name, _shown
 from mazesim.learn.higher import HigherLevel
 
 __all__ = ["NavigatorEpisodes"]
@@ -90,8 +90,9 @@ class NavigatorEpisodes:
     robot: RobotProfile | None = None
 
     def __post_init__(self) -> None:
+        _known_name(self.kind, "a navigator's kind", ("hierarchical", "flat"))
         tables = (self.lower_q, self.higher_q) if self.kind == "hierarchical" else (self.flat_q,)
-        if self.kind not in ("hierarchical", "flat") or any(t is None for t in tables):
+        if any(t is None for t in tables):
             raise InvalidArgumentError(
                 f"expected a hierarchical navigator with lower and higher tables or a flat one "
                 f"with its table, found kind {_shown(self.kind)}"

@@ -67,7 +67,7 @@ from typing import Any
 import mazesim
 from mazesim._core import Simulator, World
 from mazesim.actions import wheel_speeds
-from mazesim.errors import InvalidArgumentError, MazesimError, _shown
+from mazesim.errors import InvalidArgumentError, MazesimError, _known_name, _shown
 from mazesim.ros import standard, topics
 from mazesim.ros._ros import publisher, start_node
 from mazesim.ros.bag import BagWriter
@@ -132,11 +132,7 @@ class BridgeSettings:
 
     def validate(self) -> None:
         """Raises InvalidArgumentError naming the first parameter that is out of range."""
-        if self.mode not in MODES:
-            raise InvalidArgumentError(
-                f"expected parameter mode to be one of {', '.join(MODES)}; found "
-                f"{_shown(self.mode)}"
-            )
+        _known_name(self.mode, "parameter mode", tuple(MODES))
         if not (math.isfinite(self.speed) and self.speed > 0.0):
             raise InvalidArgumentError(
                 f"expected parameter speed to be a positive factor; found {_shown(self.speed)}"

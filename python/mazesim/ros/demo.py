@@ -30,6 +30,7 @@ from mazesim.errors import (
     InvalidArgumentError,
     MazesimError,
     PolicyFormatError,
+    _known_name,
     _shown,
 )
 from mazesim.ros.bridge import refuse_several_robots
@@ -71,10 +72,7 @@ def run_demo(args: argparse.Namespace, out: TextIO) -> int:
     from mazesim.plotting import save_trajectory_png
 
     controller = getattr(args, "controller", "hrl")
-    if controller not in CONTROLLERS:
-        raise InvalidArgumentError(
-            f"expected a controller in {', '.join(CONTROLLERS)}; found {_shown(controller)}"
-        )
+    _known_name(controller, "the controller", CONTROLLERS)
     hrl = controller == "hrl"
     world = mazesim.load_world(args.world)  # fail early on a bad world
     refuse_several_robots(world)

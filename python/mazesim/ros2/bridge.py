@@ -48,7 +48,7 @@ from typing import Any
 
 from mazesim._core import Simulator
 from mazesim.actions import wheel_speeds
-from mazesim.errors import InvalidActionError, InvalidArgumentError, _shown
+from mazesim.errors import InvalidActionError, InvalidArgumentError, _known_name, _shown
 from mazesim.ros import standard, topics
 from mazesim.ros.lockstep import (
     IDLE_CLOCK_AFTER_S,
@@ -137,8 +137,7 @@ class BridgeSettings:
 
     def validate(self) -> None:
         """Raises :class:`InvalidArgumentError` on a setting the bridge cannot run."""
-        if self.mode not in ("lockstep", "free"):
-            raise InvalidArgumentError(f"expected mode lockstep or free; found {_shown(self.mode)}")
+        _known_name(self.mode, "mode", ("lockstep", "free"))
         if not (math.isfinite(self.speed) and self.speed >= 0.0):
             raise InvalidArgumentError(
                 f"expected a speed >= 0 (0: as fast as possible); found {self.speed}"

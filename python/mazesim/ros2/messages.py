@@ -12,7 +12,7 @@ from __future__ import annotations
 import functools
 from typing import Any
 
-from mazesim.errors import InvalidArgumentError, _shown
+from mazesim.errors import InvalidArgumentError, RegisteredName, _known_name, _shown
 from mazesim.ros2._deps import require_ros2
 
 __all__ = [
@@ -31,17 +31,13 @@ DISTROS = ("humble", "jazzy")
 _NUMBERS = "int8 uint8 int16 uint16 int32 uint32 int64 uint64 float32 float64".split()
 
 
-def check_distro(distro: str) -> str:
+def check_distro(distro: RegisteredName) -> str:
     """Returns ``distro`` if the bridge knows its layouts.
 
     Raises:
         InvalidArgumentError: Another name.
     """
-    if distro not in DISTROS:
-        raise InvalidArgumentError(
-            f"expected a ROS 2 distribution, one of {', '.join(DISTROS)}; found {_shown(distro)}"
-        )
-    return distro
+    return _known_name(distro, "a ROS 2 distribution", tuple(DISTROS))
 
 
 @functools.cache

@@ -15,7 +15,7 @@ import os
 from collections.abc import Mapping
 from typing import NamedTuple
 
-from mazesim.errors import InvalidArgumentError, _shown
+from mazesim.errors import InvalidArgumentError, _known_name, _shown
 
 __all__ = ["LOCALHOST", "SUBNET", "Discovery", "cyclone_config", "discovery_from_environment"]
 
@@ -63,11 +63,8 @@ def discovery_from_environment(
     reach = LOCALHOST
     automatic = env.get("ROS_AUTOMATIC_DISCOVERY_RANGE", "").strip().upper()
     if automatic:
-        if automatic not in ("LOCALHOST", "SUBNET", "OFF", "SYSTEM_DEFAULT"):
-            raise InvalidArgumentError(
-                "expected ROS_AUTOMATIC_DISCOVERY_RANGE to be LOCALHOST, SUBNET, OFF or "
-                f"SYSTEM_DEFAULT; found {_shown(automatic)}"
-            )
+        ranges = ("LOCALHOST", "SUBNET", "OFF", "SYSTEM_DEFAULT")
+        _known_name(automatic, "ROS_AUTOMATIC_DISCOVERY_RANGE", ranges)
         reach = SUBNET if automatic in ("SUBNET", "SYSTEM_DEFAULT") else LOCALHOST
     elif env.get("ROS_LOCALHOST_ONLY", "").strip() == "0":
         reach = SUBNET

@@ -23,7 +23,7 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import NamedTuple
 
-from mazesim.errors import InvalidArgumentError, _shown
+from mazesim.errors import InvalidArgumentError, RegisteredName, _known_name, _shown
 
 __all__ = ["RosArguments", "split_ros_arguments"]
 
@@ -99,14 +99,15 @@ def _parameters_in_file(path: str) -> list[str]:
     return names
 
 
-def _check_parameter(name: str, where: str) -> None:
-    if name not in ACCEPTED_PARAMETERS:
-        option = "--" + name.replace("_", "-")
-        raise InvalidArgumentError(
-            f"expected no ROS parameter other than use_sim_time ({where}): mazesim's ROS 2 "
-            f"nodes have none, their settings are their options (perhaps {option}); found "
-            f"{_shown(name)}"
-        )
+def _check_parameter(name: RegisteredName, where: str) -> None:
+    option = "--" + str(name).replace("_", "-")
+    _known_name(
+        name,
+        f"a ROS parameter ({where})",
+        tuple(ACCEPTED_PARAMETERS),
+        ": mazesim's ROS 2 nodes have no other, their settings are their options "
+        f"(perhaps {option})",
+    )
 
 
 def split_ros_arguments(arguments: Sequence[str]) -> tuple[list[str], RosArguments]:

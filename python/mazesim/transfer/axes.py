@@ -98,12 +98,7 @@ class Axis:
             InvalidArgumentError: A level of the wrong kind or outside the documented range.
         """
         if self.names:
-            if not isinstance(level, str) or level not in self.names:
-                raise InvalidArgumentError(
-                    f"axis {_shown(self.name)}: expected one of {', '.join(self.names)}, found "
-                    f"{_shown(level)}"
-                )
-            return level
+            return _named_level(self, level)
         if isinstance(level, str) or not math.isfinite(level):
             raise InvalidArgumentError(
                 f"axis {_shown(self.name)}: expected a number, found {_shown(level)}"
@@ -129,6 +124,13 @@ class Axis:
 
 
 #: Every axis of the study, in the order of the tables and pictures.
+
+
+def _named_level(axis: Axis, level: RegisteredName) -> str:
+    """``level`` when it is one of the levels ``axis`` names; else the refusal of a name."""
+    return _known_name(level, f"a level of axis {_shown(axis.name)}", axis.names)
+
+
 AXES: tuple[Axis, ...] = (
     Axis(
         "robot",

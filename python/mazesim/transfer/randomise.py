@@ -135,12 +135,7 @@ class RandomisationSpec:
             if name == ROBOT_AXIS:
                 robots = _robot_names(pair, where)
                 continue
-            if name not in RANDOMISED_AXES:
-                raise InvalidArgumentError(
-                    f"{where}: axis {_shown(name)} is not a property of the robot profile; "
-                    "expected "
-                    f"one of {', '.join(RANDOMISED_AXES)}"
-                )
+            _known_name(name, f"{where}: a property of the robot profile", RANDOMISED_AXES)
             several = isinstance(pair, (list, tuple)) and all(
                 isinstance(part, (list, tuple)) for part in pair
             )

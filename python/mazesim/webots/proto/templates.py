@@ -17,7 +17,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from mazesim._paths import read_input
-from mazesim.errors import InvalidArgumentError, _shown
+from mazesim.errors import RegisteredName, _known_name
 
 from .syntax import located_error
 from .template_modules import JAVASCRIPT_MODULES, LUA_MODULES
@@ -325,7 +325,11 @@ def _lua(body: str, fields: dict[str, Any], context: dict[str, Any], origin: str
 
 
 def evaluate_template(
-    language: str, body: str, fields: dict[str, Any], context: dict[str, Any], origin: str
+    language: RegisteredName,
+    body: str,
+    fields: dict[str, Any],
+    context: dict[str, Any],
+    origin: str,
 ) -> str:
     """The text a procedural PROTO body generates.
 
@@ -339,11 +343,7 @@ def evaluate_template(
     Raises:
         WorldFormatError: The template does not run (with the engine's message).
     """
-    if language not in ("javascript", "lua"):
-        raise InvalidArgumentError(
-            f"evaluate_template: expected the language 'javascript' or 'lua' of {origin}, "
-            f"found {_shown(language)}"
-        )
+    _known_name(language, f"evaluate_template's language of {origin}", ("javascript", "lua"))
     body = without_comments(body)
     if language == "javascript":
         return _javascript(body, fields, context, origin)
