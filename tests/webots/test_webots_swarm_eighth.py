@@ -5,7 +5,7 @@ neighbour's infra-red reading, a referee counting collisions with getContactPoin
 e-puck2s on their ToF sensors, twenty e-pucks in a corridor, binary structs between a C and a
 Python controller, Receiver.setChannel(-1) and Emitter.setChannel(-1), a controller field a
 supervisor changes at run time, and e-pucks a supervisor places with importMFNodeFromString in a
-loop (#33)."""
+loop, and e-pucks that are their own supervisors reading each other's positions (#33)."""
 
 from __future__ import annotations
 
@@ -188,3 +188,27 @@ def test_e_pucks_placed_in_a_loop_by_import_mf_node_from_string_all_run(tmp_path
         angle = i * math.pi / 3
         expected = [(0.4 - travelled) * math.cos(angle), (0.4 - travelled) * math.sin(angle)]
         assert position == pytest.approx(expected, abs=1e-4)
+
+
+def test_e_pucks_that_are_their_own_supervisors_see_each_other_moved(tmp_path: Path) -> None:
+    """Three e-pucks with ``supervisor TRUE`` read their own position (getSelf) and each
+    other's (getFromDef) alike, step by step; a fourth robot's supervisor turns R1 and moves R2
+    after its 20th step, and from their 21st step on they drive on from there."""
+    _, logs = run("self_aware", tmp_path, 1.5)
+    step = 2.0 * WHEEL_RADIUS * 0.032
+    for name, (x, y, yaw) in {
+        "r0": (0, 0, 0),
+        "r1": (0.3, 0.1, 1.5708),
+        "r2": (-0.2, -0.3, math.pi),
+    }.items():
+        log = logs[name]
+        for k in range(40):
+            assert log["seen"][k][name.upper()] == pytest.approx(log["self"][k], abs=1e-9)
+        for k in range(20):
+            expected = (x + (k + 1) * step * math.cos(yaw), y + (k + 1) * step * math.sin(yaw))
+            assert log["self"][k] == pytest.approx(expected, abs=1e-4)
+        assert all(seen == logs["r0"]["seen"][k] for k, seen in enumerate(log["seen"]))
+    assert logs["r1"]["heading"][20] == pytest.approx(math.pi, abs=1e-4)
+    assert logs["r1"]["self"][20] == pytest.approx([0.3 - step, 0.1 + 20 * step], abs=1e-4)
+    assert logs["r2"]["self"][20] == pytest.approx([0.5 - step, 0.5], abs=1e-4)
+    assert logs["turner"]["r1_rotation"] == pytest.approx([0, 0, 1, 3.14159], abs=1e-5)
