@@ -5,7 +5,8 @@ neighbour's infra-red reading, a referee counting collisions with getContactPoin
 e-puck2s on their ToF sensors, twenty e-pucks in a corridor, binary structs between a C and a
 Python controller, Receiver.setChannel(-1) and Emitter.setChannel(-1), a controller field a
 supervisor changes at run time, and e-pucks a supervisor places with importMFNodeFromString in a
-loop, and e-pucks that are their own supervisors reading each other's positions (#33)."""
+loop, e-pucks that are their own supervisors reading each other's positions, and a bumper
+another e-puck carries in its bodySlot, which rays and bodies meet (#33)."""
 
 from __future__ import annotations
 
@@ -212,3 +213,21 @@ def test_e_pucks_that_are_their_own_supervisors_see_each_other_moved(tmp_path: P
     assert logs["r1"]["self"][20] == pytest.approx([0.3 - step, 0.1 + 20 * step], abs=1e-4)
     assert logs["r2"]["self"][20] == pytest.approx([0.5 - step, 0.5], abs=1e-4)
     assert logs["turner"]["r1_rotation"] == pytest.approx([0, 0, 1, 3.14159], abs=1e-5)
+
+
+def test_a_bumper_another_e_puck_carries_stops_rays_and_bodies(tmp_path: Path) -> None:
+    """A parked e-puck carries a white bumper (a Box, roughness 1: reflection factor 0.6) in
+    its bodySlot, 6 cm behind its centre: the careful robot's ps0 and ps7 read it above 80
+    from about 4 cm (2.66 cm for the e-puck's shell) and it stops short of the bumper, not of
+    the body behind it. A robot that drives blind at a dark bumper stops at its face."""
+    done, logs = run("bumper", tmp_path, 5.0)
+    parked, careful, parked2, blind = done.robots
+    face = -0.06 - 0.01
+    log = logs["careful"]
+    assert log["stopped"] is not None and max(log["readings"][log["stopped"] - 1]) > 80
+    short = face - (careful.final_pose[0] + BODY_RADIUS)
+    assert 0.02 < short < 0.04, short
+    assert careful.collisions == 0 and parked.distance_m == 0.0
+    assert blind.final_pose[0] + BODY_RADIUS == pytest.approx(face, abs=1e-3)
+    assert blind.final_pose[1] == pytest.approx(0.4, abs=1e-3)
+    assert parked2.distance_m == 0.0

@@ -70,7 +70,7 @@ from mazesim.webots.requirements import PreparedController, prepare_controller, 
 from mazesim.webots.robots_changed import RemovedRobot, RobotChange, robot_change
 from mazesim.webots.runner import CONTROLLER_SUFFIXES, EXIT_INTERRUPTED, OTHER_LANGUAGES
 from mazesim.webots.scene import Scene, read_scene, read_scenes, read_world_text
-from mazesim.webots.shared_world import RobotView, shared_simulator, with_robots_of
+from mazesim.webots.shared_world import RobotView, carrying, shared_simulator, with_robots_of
 from mazesim.webots.simulation import WorldReset, robot_profile_name
 from mazesim.webots.solids import Pose2, WorldSolids, carried_over
 from mazesim.webots.stock_controllers import stock_controller
@@ -699,7 +699,8 @@ def run_world(
     e_pucks = [i for i, robot in enumerate(robots) if robot.get("profile") is not None]
     scenes = _robot_scenes(world_path, robots)
     own = _own_profiles(robots, scenes)
-    shared, refusal = shared_simulator(world, robots, e_pucks, seed=seed, noise=noise, profiles=own)
+    placed = carrying(robots, scenes)
+    shared, refusal = shared_simulator(world, placed, e_pucks, seed=seed, noise=noise, profiles=own)
     if refusal:
         print(
             f"mazesim: warning: the e-pucks run in simulators of their own, without seeing or "
