@@ -13,6 +13,7 @@ from pettingzoo.test import (  # noqa: E402
     api_test,
     parallel_api_test,
     parallel_seed_test,
+    render_test,
     seed_test,
     state_test,
 )
@@ -80,6 +81,28 @@ def test_render_draws_every_robot(name: str) -> None:
     moved = env.render()
     assert moved is not None and not np.array_equal(frame, moved)
     assert module.parallel_env(**options).render() is None
+
+
+@pytest.mark.parametrize("name", TASKS)
+def test_render_test_passes_in_every_render_mode(
+    name: str, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """PettingZoo's ``render_test`` makes the AEC env with ``render_mode="human"`` first, then
+    one of each declared mode: ``"human"`` shows the picture (here headless, said once per env)
+    and answers None, ``"rgb_array"`` the picture itself."""
+    monkeypatch.delenv("DISPLAY", raising=False)
+    monkeypatch.delenv("WAYLAND_DISPLAY", raising=False)
+    module, options = TASKS[name]
+    render_test(lambda render_mode=None: module.env(render_mode=render_mode, **options))
+    env = module.parallel_env(render_mode="human", **options)
+    assert env.metadata["render_modes"] == ["human", "rgb_array"]
+    capsys.readouterr()
+    env.reset(seed=2)
+    env.step({agent: np.array([1.0, 1.0]) for agent in env.agents})
+    assert env.render() is None
+    said = capsys.readouterr().err
+    assert said.count('render_mode="human" shows no window here') == 1, said
+    env.close()
 
 
 #: Settings a MARL user tries beside the defaults: one robot (JaxNav's single-agent case), eight

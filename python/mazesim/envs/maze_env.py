@@ -331,15 +331,11 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
             return None
         frame = self._frame()
         if self.render_mode == "human":
-            if self._live is None:
-                from mazesim.render.live import LiveView
+            from mazesim.render.live import shown_in
 
-                self._live = LiveView(
-                    f"mazesim: {self.world.name}",
-                    1.0 / float(self.metadata["render_fps"]),
-                    headless_notice=HUMAN_MODE_HEADLESS_NOTICE,
-                )
-            self._live.show(frame)
+            fps = float(self.metadata["render_fps"])
+            title = f"mazesim: {self.world.name}"
+            self._live = shown_in(self._live, frame, title, fps, HUMAN_MODE_HEADLESS_NOTICE)
             return None
         return frame
 

@@ -25,10 +25,20 @@ from mazesim.errors import InvalidActionError, InvalidArgumentError, _a_type, _s
 from mazesim.marl.batch import MultiRobotBatch
 from mazesim.marl.render import SwarmRenderer
 from mazesim.marl.tasks import MultiRobotTask
+from mazesim.render.live import LiveView, shown_in
 
 __all__ = ["MultiRobotParallelEnv"]
 
 Observation = npt.NDArray[np.float32]
+
+#: What an env of ``render_mode="human"`` says once where no window can open (``{problem}``: the
+#: reason), as the single-robot envs say it, and that PettingZoo's ``render_test``, which makes
+#: an env of every declared render mode, needs nothing done.
+HUMAN_MODE_HEADLESS_NOTICE = (
+    'mazesim: render_mode="human" shows no window here: {problem}; its frames are drawn but not '
+    'shown (render_mode="rgb_array" returns them as arrays). Nothing to do when PettingZoo\'s '
+    "render_test made this env: it tries every render mode"
+)
 
 
 class MultiRobotParallelEnv(ParallelEnv[str, Observation, npt.NDArray[np.float32]]):
@@ -36,14 +46,16 @@ class MultiRobotParallelEnv(ParallelEnv[str, Observation, npt.NDArray[np.float32
 
     Args:
         task: The task's rules.
-        render_mode: None or ``"rgb_array"`` (a top-down picture of the world and every robot).
+        render_mode: None, ``"rgb_array"`` (a top-down picture of the world and every robot) or
+            ``"human"`` (that picture in a window, updated at every reset and step, as the
+            single-robot envs show theirs; headless where no window can open).
         control_step_ms: Control step in milliseconds.
         noise: Whether sensors and wheels are noisy.
     """
 
     metadata: dict[str, Any] = {
         "name": "mazesim_multi_robot",
-        "render_modes": ["rgb_array"],
+        "render_modes": ["human", "rgb_array"],
         "is_parallelizable": True,
         "render_fps": 8,
     }
@@ -55,9 +67,9 @@ class MultiRobotParallelEnv(ParallelEnv[str, Observation, npt.NDArray[np.float32
         control_step_ms: float = 128.0,
         noise: bool = True,
     ) -> None:
-        if render_mode not in (None, "rgb_array"):
+        if render_mode not in (None, "human", "rgb_array"):
             raise InvalidArgumentError(
-                f'expected render_mode None or "rgb_array", found {_shown(render_mode)}'
+                f'expected render_mode None, "human" or "rgb_array", found {_shown(render_mode)}'
             )
         self.metadata = {**type(self).metadata, "name": task.name}
         self.render_mode = render_mode
@@ -80,6 +92,7 @@ class MultiRobotParallelEnv(ParallelEnv[str, Observation, npt.NDArray[np.float32
         self._observations = np.zeros((robots, width), np.float32)
         self._action_spaces = {a: self._action_space for a in self.possible_agents}
         self._renderer: SwarmRenderer | None = None
+        self._live: LiveView | None = None
         self._closed = False
 
     def observation_space(self, agent: str) -> gymnasium.spaces.Space[Any]:
@@ -108,6 +121,8 @@ class MultiRobotParallelEnv(ParallelEnv[str, Observation, npt.NDArray[np.float32
         self.agents = list(self.possible_agents)
         self._was_reset = True
         self._renderer = None
+        if self.render_mode == "human":
+            self.render()
         return self._per_agent(observations[0]), {a: {} for a in self.agents}
 
     def step(
@@ -172,6 +187,8 @@ class MultiRobotParallelEnv(ParallelEnv[str, Observation, npt.NDArray[np.float32
             {a: _agent_info(infos, index[a]) for a in live},
         )
         self.agents = [a for a in live if not (result[2][a] or result[3][a])]
+        if self.render_mode == "human":
+            self.render()
         return result
 
     def state(self) -> npt.NDArray[np.float32]:
@@ -190,21 +207,32 @@ class MultiRobotParallelEnv(ParallelEnv[str, Observation, npt.NDArray[np.float32
         return np.concatenate([self._observations.ravel(), poses.ravel()])
 
     def render(self) -> npt.NDArray[np.uint8] | None:
-        """A top-down RGB picture (``render_mode="rgb_array"``), else None."""
+        """A top-down RGB picture (``render_mode="rgb_array"``); with ``"human"`` the same
+        picture shown in a window (:class:`~mazesim.render.live.LiveView`, which carries on
+        headless where there is no display) and None; else None."""
         self._check_open()
-        if self.render_mode != "rgb_array":
+        if self.render_mode is None:
             return None
         draw = self.batch.draws[0]
         if draw is None:
             raise InvalidArgumentError("expected reset() before render()")
         if self._renderer is None:
             self._renderer = SwarmRenderer(draw.world, self.batch.profile, draw.goals)
-        return self._renderer.frame(self.batch.poses[0], self.batch.colliding[0])
+        frame = self._renderer.frame(self.batch.poses[0], self.batch.colliding[0])
+        if self.render_mode == "rgb_array":
+            return frame
+        fps = float(self.metadata["render_fps"])
+        title = f"mazesim: {self.metadata['name']}"
+        self._live = shown_in(self._live, frame, title, fps, HUMAN_MODE_HEADLESS_NOTICE)
+        return None
 
     def close(self) -> None:
         """Releases the picture (the simulator holds no outside resource); ``reset``, ``step``
         and ``render`` raise :class:`~mazesim.envs.EnvClosedError` from then on."""
         self._renderer = None
+        if self._live is not None:
+            self._live.close()
+            self._live = None
         self._closed = True
 
     def _check_open(self) -> None:

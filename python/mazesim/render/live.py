@@ -17,7 +17,13 @@ from typing import Any, TextIO
 import numpy as np
 import numpy.typing as npt
 
-__all__ = ["LIVE_OPTION_NOTICE", "NON_INTERACTIVE_BACKENDS", "LiveView", "display_problem"]
+__all__ = [
+    "LIVE_OPTION_NOTICE",
+    "NON_INTERACTIVE_BACKENDS",
+    "LiveView",
+    "display_problem",
+    "shown_in",
+]
 
 #: What a command's ``--live`` says where no window can open (``{problem}``: the reason).
 LIVE_OPTION_NOTICE = "mazesim: live view off: {problem}; carrying on headless"
@@ -104,3 +110,19 @@ class LiveView:
 
             pyplot.close(self._figure)
             self._figure = None
+
+
+def shown_in(
+    live: LiveView | None,
+    frame: npt.NDArray[np.uint8],
+    title: str,
+    frames_per_second: float,
+    headless_notice: str,
+) -> LiveView:
+    """Shows ``frame`` in ``live``, opened first when it is None (titled ``title``, at most
+    ``frames_per_second`` frames a second of real time, ``headless_notice`` said where no
+    window can open), as an env of ``render_mode="human"`` renders; returns the view."""
+    if live is None:
+        live = LiveView(title, 1.0 / frames_per_second, headless_notice=headless_notice)
+    live.show(frame)
+    return live

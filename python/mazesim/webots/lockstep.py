@@ -70,7 +70,7 @@ from mazesim.webots.requirements import PreparedController, prepare_controller, 
 from mazesim.webots.robots_changed import RemovedRobot, RobotChange, robot_change
 from mazesim.webots.runner import CONTROLLER_SUFFIXES, EXIT_INTERRUPTED, OTHER_LANGUAGES
 from mazesim.webots.scene import Scene, read_scene, read_scenes, read_world_text
-from mazesim.webots.shared_world import RobotView, shared_simulator, with_robots_of
+from mazesim.webots.shared_world import RobotView, carrying, shared_simulator, with_robots_of
 from mazesim.webots.simulation import WorldReset, robot_profile_name
 from mazesim.webots.solids import Pose2, WorldSolids, carried_over
 from mazesim.webots.stock_controllers import stock_controller
@@ -180,6 +180,11 @@ class WorldRun:
             if robot.quit_requested:
                 return robot.exit_status
         return next((r.exit_status for r in self.robots if r.exit_status), 0)
+
+
+#: A gap between two robots' bodies below this (m) counts as their contact, as the core counts
+#: it (``ROBOT_CONTACT_GAP`` of ``mazesim_core::simulator``).
+ROBOT_CONTACT_GAP = 2e-4
 
 
 class Fleet:
@@ -307,6 +312,27 @@ class Fleet:
             None if index in self.gone else self.pose(index)
             for index in range(len(self._simulators))
         ]
+
+    def contact_points(self, index: int) -> list[list[float]]:
+        """Where robot ``index`` touches something now (x, y, 0 on the floor, m): for each
+        other robot it touches, the point where their bodies meet; for a wall it touches, its
+        own centre. Empty while it touches nothing, or once a supervisor removed it."""
+        if index in self.gone or not self._simulators[index].colliding:
+            return []
+        radii = self.body_radii()
+        x, y, _ = self.pose(index)
+        own = radii[index] or 0.0
+        points = []
+        for other in self._here():
+            radius = radii[other]
+            if other == index or radius is None:
+                continue
+            ox, oy, _ = self.pose(other)
+            apart = math.hypot(ox - x, oy - y)
+            if 0.0 < apart <= own + radius + ROBOT_CONTACT_GAP:
+                share = own / apart
+                points.append([x + (ox - x) * share, y + (oy - y) * share, 0.0])
+        return points or [[x, y, 0.0]]
 
     def move(self, index: int, x: float, y: float, yaw: float) -> None:
         """Puts a robot at a new pose, at rest."""
@@ -673,7 +699,8 @@ def run_world(
     e_pucks = [i for i, robot in enumerate(robots) if robot.get("profile") is not None]
     scenes = _robot_scenes(world_path, robots)
     own = _own_profiles(robots, scenes)
-    shared, refusal = shared_simulator(world, robots, e_pucks, seed=seed, noise=noise, profiles=own)
+    placed = carrying(robots, scenes)
+    shared, refusal = shared_simulator(world, placed, e_pucks, seed=seed, noise=noise, profiles=own)
     if refusal:
         print(
             f"mazesim: warning: the e-pucks run in simulators of their own, without seeing or "
@@ -1111,6 +1138,9 @@ class _Pipes:
         self.sent_commands: dict[int, Any] = {}
         #: Each robot's own ``setCustomData`` sent with the step it asked for.
         self.own_custom_data: dict[int, str] = {}
+        #: Each restarted robot's last restart: the world's clock then and the ``controller``
+        #: field it started (:meth:`regroup` makes the restarts of one step one).
+        self.restarted: dict[int, tuple[float, Any]] = {}
         self.over = False
 
     def pending(self) -> list[Any]:
@@ -1130,12 +1160,21 @@ class _Pipes:
         if self.fleet.reload_asked:
             self.fleet.reload_scene()
             self.fleet.note_poses()
+            self.restarted.clear()  # the clock is back at 0: every restart starts anew
             for index in self.fleet.restarts:
                 x, y, _ = self.simulators[index].pose
                 self.runs[index].xs[-1], self.runs[index].ys[-1] = float(x), float(y)
         for index in self.fleet.restarts:
             if index in self.fleet.left:
                 continue
+            now = float(self.simulators[index].time)
+            field = self.fleet.robots_of([index])[0].get("controller")
+            if self.restarted.get(index) == (now, field):
+                # As Webots does, the restarts asked in one step start one controller: the
+                # one a restart started in this step runs what the field names, not yet
+                # stepped (a field write and a restartController() in the same step).
+                continue
+            self.restarted[index] = (now, field)
             if index in self.live:
                 old = self.connections[index]
                 self.retired[id(old)] = old
@@ -1144,7 +1183,7 @@ class _Pipes:
                     old.send(("ok", (True, None)))
             restarted, job = joined(index, True)
             run = self.runs[index]
-            run.restarts_s.append(float(self.simulators[index].time))
+            run.restarts_s.append(now)
             run.controller, run.note = restarted.controller, restarted.note
             if job is not None:
                 self._start(processes, index, job)

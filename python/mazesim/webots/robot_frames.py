@@ -9,7 +9,9 @@ the ``Box``, ``Cylinder``, ``Capsule`` and ``Sphere`` shapes of each robot node'
 of its slots (an E-puck's ``turretSlot``, ``groundSensorsSlot`` and ``bodySlot``, each at the
 place the E-puck PROTO mounts it: :data:`SLOT_ORIGINS`), through ``Solid``, ``Transform``,
 ``Pose``, ``Group`` and device nodes, not a joint's end point nor a ``boundingObject``: what
-another robot's camera draws of it beside its body.
+another robot's camera draws of it beside its body. :func:`carried_shapes` gives those of a
+robot node that span the infra-red rays' heights, as a world's carried shapes, which the other
+robots' rays and bodies meet.
 """
 
 from __future__ import annotations
@@ -17,6 +19,7 @@ from __future__ import annotations
 import math
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 import numpy.typing as npt
@@ -24,7 +27,15 @@ import numpy.typing as npt
 from mazesim.webots.frames import SLOT_ORIGINS, rotation_matrix
 from mazesim.webots.scene import Scene, SceneNode
 
-__all__ = ["SLOT_ORIGINS", "Mount", "RobotShape", "robot_mount", "robot_shapes"]
+__all__ = [
+    "SLOT_ORIGINS",
+    "Mount",
+    "RobotShape",
+    "carried_shapes",
+    "infrared_reflectance",
+    "robot_mount",
+    "robot_shapes",
+]
 
 Matrix = npt.NDArray[np.float64]
 
@@ -135,15 +146,75 @@ def robot_shapes(scene: Scene) -> dict[int, list[RobotShape]]:
     for node in scene.nodes:
         if node.robot or node.base_type not in ("Robot", "DifferentialWheels"):
             continue
-        linear, origin = _level(*_frame(_scale_fixed(scene, node)))
-        shapes = [
-            shape
-            for frame, shape_node in _shapes_below(scene, node, linear, origin)
-            if (shape := _shape(scene, shape_node, *frame)) is not None
-        ]
+        shapes = [shape for shape, _ in _node_shapes(scene, node)]
         if shapes:
             found[node.line] = shapes
     return found
+
+
+def carried_shapes(
+    scene: Scene, line: int, body_radius: float, heights: tuple[float, float]
+) -> list[dict[str, Any]]:
+    """The shapes the robot node on ``line`` holds beside its body (reaching beyond
+    ``body_radius``) that span the infra-red rays' ``heights`` (lowest, highest; m), as a
+    world's ``[[robots.carried]]`` entries: each box or cylinder in the robot's frame with the
+    reflection factor Webots' infra-red model gives its appearance
+    (:func:`infrared_reflectance`); a sphere as the cylinder of its radius. ``scene`` is that
+    of another robot's run, in which the node is one of the others (whose shapes it lists)."""
+    own = next((n for n in scene.nodes if n.line == line and not n.robot), None)
+    if own is None:
+        return []
+    carried: list[dict[str, Any]] = []
+    for shape, shape_node in _node_shapes(scene, own):
+        if shape.top < heights[0] or shape.bottom > heights[1]:
+            continue
+        entry: dict[str, Any] = {"center": [shape.x, shape.y]}
+        if shape.size is None:
+            entry["radius"] = shape.radius
+            reach = math.hypot(shape.x, shape.y) + shape.radius
+        else:
+            entry["size"] = list(shape.size)
+            entry["yaw"] = shape.yaw
+            reach = math.hypot(shape.x, shape.y) + math.hypot(*shape.size) / 2.0
+        if reach <= body_radius or not all(v > 0.0 for v in entry.get("size", [1.0])):
+            continue
+        entry["reflectance"] = infrared_reflectance(shape_node.nodes.get("appearance"))
+        carried.append(entry)
+    return carried
+
+
+def infrared_reflectance(appearance: SceneNode | None) -> float:
+    """Webots' infra-red reflection factor of a Shape's appearance, ``0.2 + 0.8 * red * (1 -
+    0.5 * roughness)`` (reference manual, DistanceSensor), ``red`` its colour's times ``1 -
+    transparency``: a ``PBRAppearance``'s ``baseColor`` and ``roughness`` (defaults white and
+    0), an ``Appearance``'s ``Material.diffuseColor`` (white without a material), an
+    appearance PROTO's ``colorOverride`` (white without one), each of roughness 0 but the
+    first; white (1.0) without an appearance."""
+    red, transparency, roughness = 1.0, 0.0, 0.0
+    if appearance is not None and appearance.type_name == "PBRAppearance":
+        red = _first(appearance.numbers, "baseColor", 1.0)
+        transparency = _first(appearance.numbers, "transparency", 0.0)
+        roughness = _first(appearance.numbers, "roughness", 0.0)
+    elif appearance is not None and appearance.type_name == "Appearance":
+        material = appearance.nodes.get("material")
+        if material is not None:
+            red = _first(material.numbers, "diffuseColor", MATERIAL_DIFFUSE[0])
+            transparency = _first(material.numbers, "transparency", 0.0)
+    elif appearance is not None:
+        red = _first(appearance.numbers, "colorOverride", 1.0)
+    red = min(1.0, max(0.0, red)) * (1.0 - min(1.0, max(0.0, transparency)))
+    return 0.2 + 0.8 * red * (1.0 - 0.5 * min(1.0, max(0.0, roughness)))
+
+
+def _node_shapes(scene: Scene, node: SceneNode) -> list[tuple[RobotShape, SceneNode]]:
+    """The primitive visual shapes a robot node holds, in its floor frame, with their Shape
+    nodes."""
+    linear, origin = _level(*_frame(_scale_fixed(scene, node)))
+    return [
+        (shape, shape_node)
+        for frame, shape_node in _shapes_below(scene, node, linear, origin)
+        if (shape := _shape(scene, shape_node, *frame)) is not None
+    ]
 
 
 def _shapes_below(

@@ -3,12 +3,14 @@
 :func:`shared_simulator` puts every e-puck of an imported world into one
 :class:`~mazesim.Simulator` (the world's ``[[robots]]``, see ``docs/multi-robot.md``); a
 :class:`RobotView` is one of them with the calls of a one-robot simulator, which is what a
-controller's process asks for over its pipe (:mod:`mazesim.webots.controller_process`). The
-world's movable bodies are in the shared simulator too: every e-puck pushes them and sees them
-where they are. Robots that overlap at their written starts share it too, put there as a supervisor
-puts one onto another (a world whose supervisor scatters them before the first step). A world
-the shared simulator refuses (more robots than it holds) is run with a simulator per robot
-instead, with a warning.
+controller's process asks for over its pipe (:mod:`mazesim.webots.controller_process`). An
+e-puck's node holding shapes beside its body (a bumper in its ``bodySlot``, a box on its turret)
+carries them there (:func:`carrying`): the other e-pucks' infra-red rays and bodies meet them,
+as Webots' rays meet every Shape. The world's movable bodies are in the shared simulator too:
+every e-puck pushes them and sees them where they are. Robots that overlap at their written
+starts share it too, put there as a supervisor puts one onto another (a world whose supervisor
+scatters them before the first step). A world the shared simulator refuses (more robots than it
+holds) is run with a simulator per robot instead, with a warning.
 """
 
 from __future__ import annotations
@@ -19,8 +21,24 @@ from typing import Any
 from mazesim._core import RobotProfile, Simulator, World
 from mazesim._toml import dump_toml, load_toml
 from mazesim.errors import MazesimError
+from mazesim.webots.robot_frames import carried_shapes
+from mazesim.webots.scene import Scene
 
-__all__ = ["RobotView", "shared_simulator", "with_robots_of"]
+#: The heights (m) the E-puck's infra-red rays run at: from its sensors, 3.3 cm above the
+#: floor, to 4.4 cm at the end of their 7 cm (``docs/webots.md``). A shape another e-puck
+#: carries that spans them is met by the rays.
+INFRARED_HEIGHTS = (0.033, 0.044)
+#: The e-puck's body radius (m): a carried shape within it changes nothing.
+E_PUCK_BODY_RADIUS = 0.037
+
+__all__ = [
+    "E_PUCK_BODY_RADIUS",
+    "INFRARED_HEIGHTS",
+    "RobotView",
+    "carrying",
+    "shared_simulator",
+    "with_robots_of",
+]
 
 
 class RobotView:
@@ -99,6 +117,26 @@ class RobotView:
         return self.simulator.ground_sensors(robot_index=self.index)
 
 
+def carrying(
+    robots: Sequence[Mapping[str, Any]], scenes: Sequence[Scene]
+) -> list[Mapping[str, Any]]:
+    """The import report's ``robots`` (each with the scene of its node, ``scenes``), each
+    e-puck's with ``carried``: the Box, Cylinder and Sphere shapes its node holds beside its
+    body (in its slots or among its children) where they span the infra-red rays' heights
+    (:data:`INFRARED_HEIGHTS`), which the other e-pucks' rays and bodies meet in the shared
+    simulator (:func:`~mazesim.webots.robot_frames.carried_shapes`)."""
+    placed: list[Mapping[str, Any]] = []
+    for index, robot in enumerate(robots):
+        carried = []
+        if robot.get("profile") is not None and len(scenes) > 1:
+            # The node as another robot's run reads it: one of the others, shapes and all.
+            seen_from = scenes[(index + 1) % len(scenes)]
+            line = int(robot.get("line") or 0)
+            carried = carried_shapes(seen_from, line, E_PUCK_BODY_RADIUS, INFRARED_HEIGHTS)
+        placed.append({**robot, "carried": carried} if carried else robot)
+    return placed
+
+
 def shared_simulator(
     world: World,
     robots: Sequence[Mapping[str, Any]],
@@ -170,6 +208,8 @@ def _built(
     for index, (x, y, yaw) in zip(indices, poses):
         profile = robots[index].get("profile") or "e-puck"
         entry = {"name": f"robot-{index}", "x": x, "y": y, "yaw": yaw, "profile": profile}
+        if robots[index].get("carried"):
+            entry["carried"] = list(robots[index]["carried"])
         placed["robots"].append(entry)
     shared = World.from_toml(dump_toml(placed), source=source)
     if not profiles:

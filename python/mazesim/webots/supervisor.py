@@ -601,7 +601,13 @@ class Node(NotSimulated):
         )
 
     def getContactPoints(self, includeDescendants: bool = False) -> list[ContactPoint]:
-        """The robot's contact with a wall, if it touches one (its centre stands for it)."""
+        """The robot's contacts now, each on the node itself (its id), on the floor: with
+        another robot of a world run, where their bodies meet; with a wall, the robot's centre
+        standing for the point. Another robot's node answers with that robot's contacts."""
+        fleet = self._simulation().fleet
+        if fleet is not None and self._fleet_index is not None:
+            points = fleet.contact_points(self._fleet_index)
+            return [ContactPoint(_out(point), self._id) for point in points]
         if self._robot and self._simulation().simulator.colliding:
             x, y, _ = self._pose()
             return [ContactPoint(_out([x, y, 0.0]))]

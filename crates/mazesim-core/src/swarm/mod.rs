@@ -30,7 +30,7 @@ use crate::simulator::{
     move_in_scene, place_in_scene, pushed_out, share_scene, Drive, Neighbour, Others, Rig,
     SceneStep, SimConfig, Simulator, START_OVERLAP,
 };
-use crate::world::{Motion, MovableBody, World};
+use crate::world::{Motion, MovableBody, RobotPlacement, World};
 
 /// The seed of the noise stream of robot `index`, named `name`, of a world run with `seed`: the
 /// seed itself for robot 0, and for the others the first SplitMix64 output of the seed mixed with
@@ -58,23 +58,44 @@ struct Workspace {
     scene: SceneStep,
 }
 
-/// The robots' discs at their current poses.
-fn discs_of(robots: &[Simulator], discs: &mut Vec<Neighbour>) {
+/// The robots' discs at their current poses, each reaching as far as the shapes it carries
+/// (`placements`: the world's, empty when no robot carries any).
+fn discs_of(robots: &[Simulator], placements: &[RobotPlacement], discs: &mut Vec<Neighbour>) {
     discs.clear();
-    discs.extend(robots.iter().map(|r| {
-        let [x, y, _] = r.pose();
+    discs.extend(robots.iter().enumerate().map(|(i, r)| {
+        let [x, y, yaw] = r.pose();
+        let radius = r.robot().body_radius as f32;
+        let carried = placements.get(i).map_or(&[][..], |p| &p.carried[..]);
         Neighbour {
             center: [x, y],
-            radius: r.robot().body_radius as f32,
+            radius,
+            yaw,
+            extent: carried.iter().map(|s| s.reach()).fold(radius, f32::max),
         }
     }));
+}
+
+/// The world's robot placements when one of them carries a shape, else none (the robots are
+/// their bodies alone).
+fn carrying(world: &World) -> &[RobotPlacement] {
+    let placements = world.robots();
+    if placements.iter().any(|p| !p.carried.is_empty()) {
+        placements
+    } else {
+        &[]
+    }
 }
 
 /// The robots of `all` as robot `me` sees them: none when every other is beyond `reach` of it
 /// (then it steps exactly as a robot alone does), else all of them.
 #[inline]
-fn near(all: &[Neighbour], me: usize, reach: f32) -> Others<'_> {
-    let others = Others { all, me };
+fn near<'a>(
+    all: &'a [Neighbour],
+    me: usize,
+    reach: f32,
+    placements: &'a [RobotPlacement],
+) -> Others<'a> {
+    let others = Others::new(all, me, placements);
     if others.any_within(reach) {
         others
     } else {
@@ -97,6 +118,8 @@ pub fn step_robots(robots: &mut [Simulator], command: impl Fn(usize) -> [f64; 2]
             )));
         }
     }
+    let world = robots[0].world().clone();
+    let carried = carrying(&world);
     WORKSPACE.with_borrow_mut(|w| {
         w.drives.clear();
         for (i, robot) in robots.iter_mut().enumerate() {
@@ -106,28 +129,28 @@ pub fn step_robots(robots: &mut [Simulator], command: impl Fn(usize) -> [f64; 2]
         let steps = robots[0].physics_steps();
         let shared = robots[0].in_shared_scene();
         for k in 1..=steps {
-            discs_of(robots, &mut w.discs);
+            discs_of(robots, carried, &mut w.discs);
             if shared {
                 let discs = &w.discs;
-                let others = |i: usize, r: &Simulator| near(discs, i, r.reach());
+                let others = |i: usize, r: &Simulator| near(discs, i, r.reach(), carried);
                 move_in_scene(robots, &w.drives, others, &mut w.before, &mut w.scene);
             } else {
                 w.before.clear();
                 for (i, (robot, drive)) in robots.iter_mut().zip(&w.drives).enumerate() {
-                    let others = near(&w.discs, i, robot.reach());
+                    let others = near(&w.discs, i, robot.reach(), carried);
                     w.before.push(robot.physics_move(drive, others));
                 }
             }
-            discs_of(robots, &mut w.discs);
+            discs_of(robots, carried, &mut w.discs);
             // Robot 0 holds a shared scene: the others' rays meet its movable bodies.
             let (first, rest) = robots.split_at_mut(1);
             let robot = &mut first[0];
-            let others = near(&w.discs, 0, robot.reach());
+            let others = near(&w.discs, 0, robot.reach(), carried);
             robot.physics_settle(&mut w.drives[0], k, w.before[0], others, None);
             let scene = shared.then_some(&first[0]);
             let moved = rest.iter_mut().zip(&mut w.drives[1..]).zip(&w.before[1..]);
             for (j, ((robot, drive), &before)) in moved.enumerate() {
-                let others = near(&w.discs, j + 1, robot.reach());
+                let others = near(&w.discs, j + 1, robot.reach(), carried);
                 robot.physics_settle(drive, k, before, others, scene);
             }
         }
@@ -143,14 +166,16 @@ pub fn sense_robots(robots: &mut [Simulator]) {
     if robots.len() < 2 {
         return;
     }
+    let world = robots[0].world().clone();
+    let carried = carrying(&world);
     WORKSPACE.with_borrow_mut(|w| {
-        discs_of(robots, &mut w.discs);
+        discs_of(robots, carried, &mut w.discs);
         let all = &w.discs;
         let (first, rest) = robots.split_at_mut(1);
-        first[0].sense_robots(Others { all, me: 0 }, None);
+        first[0].sense_robots(Others::new(all, 0, carried), None);
         let scene = first[0].in_shared_scene().then_some(&first[0]);
         for (j, robot) in rest.iter_mut().enumerate() {
-            robot.sense_robots(Others { all, me: j + 1 }, scene);
+            robot.sense_robots(Others::new(all, j + 1, carried), scene);
         }
     });
 }

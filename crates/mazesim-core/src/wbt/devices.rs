@@ -409,13 +409,15 @@ impl<'d> Importer<'d> {
             if !self.nodes(node, "boundingObject").is_empty() {
                 let label = self.label(node);
                 self.warn(format!(
-                    "{label}: in the robot's {slot}: its collision shape is not added to the robot's body"
+                    "{label}: in the robot's {slot}: its collision shape is not added to the robot's body \
+                     (in a run of the whole world the other robots' infra-red rays and bodies meet \
+                     the Box, Cylinder and Sphere shapes it holds, as carried shapes)"
                 ));
             }
         } else {
             let label = self.label(node);
             let what = if kind == "Shape" || kind == "CadShape" {
-                "a visual node: other robots' cameras see it (a Box, Cylinder, Capsule or Sphere), nothing else simulates it"
+                "a visual node: other robots' cameras see it (a Box, Cylinder, Capsule or Sphere) and, in a run of the whole world, their infra-red rays and bodies meet it where it spans their sensors' height; nothing else simulates it"
             } else {
                 "not a device mazesim lists; not imported"
             };

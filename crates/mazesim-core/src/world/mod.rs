@@ -27,7 +27,7 @@ pub use geometry::{Bounds, PaintShape, WallBox};
 pub use grid::CellMaze;
 pub use moves::Motion;
 pub use nearby::{NearbyWalls, RayFan};
-pub use robots::RobotPlacement;
+pub use robots::{CarriedShape, RobotPlacement};
 pub use sensed::SensedWalls;
 pub use spec::WorldSpec;
 pub use walls::{RayHit, WallIndex};

@@ -2,9 +2,46 @@
 //! `[[robots]]`, each with a unique name, a start pose and optionally a built-in profile.
 
 use super::extent::{ExtentCheck, Place};
-use super::spec::RobotSpec;
+use super::spec::{CarriedSpec, RobotSpec};
 use crate::error::Result;
 use crate::limits::MAX_ROBOTS;
+
+/// How far from a robot's centre a shape it carries may reach, metres.
+pub const CARRIED_REACH: f64 = 0.5;
+
+/// The most shapes one robot carries.
+pub const MAX_CARRIED: usize = 16;
+
+/// A shape a robot carries beside its body, in the robot's frame (x ahead, y to its left): a
+/// box of half extents `half` turned by `yaw`, or, with `radius` above zero, an upright
+/// cylinder. The other robots' infra-red rays meet it with its `reflectance` and their bodies
+/// are held back by it, as Webots' rays meet every Shape a robot holds.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CarriedShape {
+    /// Centre in the robot's frame, metres.
+    pub center: [f32; 2],
+    /// A box's half extents along its own axes, metres.
+    pub half: [f32; 2],
+    /// A box's rotation in the robot's frame, radians.
+    pub yaw: f32,
+    /// A cylinder's radius, metres; 0 for a box.
+    pub radius: f32,
+    /// Infra-red reflection factor.
+    pub reflectance: f32,
+}
+
+impl CarriedShape {
+    /// The farthest point of the shape from the robot's centre, metres.
+    pub fn reach(&self) -> f32 {
+        let [x, y] = self.center;
+        let size = if self.radius > 0.0 {
+            self.radius
+        } else {
+            (self.half[0] * self.half[0] + self.half[1] * self.half[1]).sqrt()
+        };
+        (x * x + y * y).sqrt() + size
+    }
+}
 
 /// The name of the one robot of a world written with `[start]`.
 pub const SINGLE_ROBOT_NAME: &str = "robot";
@@ -18,6 +55,8 @@ pub struct RobotPlacement {
     pub start: [f64; 3],
     /// A built-in profile's name, or `None` for the simulator's profile.
     pub profile: Option<String>,
+    /// The shapes it carries beside its body (none for a robot of its body alone).
+    pub carried: Vec<CarriedShape>,
 }
 
 /// Compiles `[[robots]]` (checking the count, names, poses and profiles); `start` is the pose
@@ -33,6 +72,7 @@ pub(super) fn compile(
             name: SINGLE_ROBOT_NAME.to_string(),
             start,
             profile: None,
+            carried: Vec::new(),
         }]);
     }
     if has_start {
@@ -86,11 +126,71 @@ pub(super) fn compile(
                 ));
             }
         }
+        let carried = carried_shapes(&r.carried, check, place, &field("carried"))?;
         placements.push(RobotPlacement {
             name: r.name.clone(),
             start: [r.x.get(), r.y.get(), r.yaw.get()],
             profile: r.profile.clone(),
+            carried,
         });
     }
     Ok(placements)
+}
+
+/// Checks and converts a robot's `carried` shapes: at most [`MAX_CARRIED`], each a box or a
+/// cylinder (not both, not neither) within [`CARRIED_REACH`] of the robot's centre.
+fn carried_shapes(
+    specs: &[CarriedSpec],
+    check: &ExtentCheck<'_>,
+    place: Place<'_>,
+    field: &str,
+) -> Result<Vec<CarriedShape>> {
+    if specs.len() > MAX_CARRIED {
+        return Err(check.refused(
+            place,
+            field,
+            format!(
+                "expected at most {MAX_CARRIED} carried shapes, found {}",
+                specs.len()
+            ),
+        ));
+    }
+    let mut shapes = Vec::with_capacity(specs.len());
+    for (k, s) in specs.iter().enumerate() {
+        let [x, y] = [s.center[0].get() as f32, s.center[1].get() as f32];
+        let (half, radius) = match (&s.size, &s.radius) {
+            (Some(size), None) => (
+                [size[0].get() as f32 / 2.0, size[1].get() as f32 / 2.0],
+                0.0,
+            ),
+            (None, Some(r)) => ([0.0; 2], r.get() as f32),
+            _ => {
+                return Err(check.refused(
+                    place,
+                    &format!("{field}[{k}]"),
+                    "expected either size (a box) or radius (a cylinder)".to_string(),
+                ))
+            }
+        };
+        let shape = CarriedShape {
+            center: [x, y],
+            half,
+            yaw: s.yaw.get() as f32,
+            radius,
+            reflectance: s.reflectance.get() as f32,
+        };
+        if f64::from(shape.reach()) > CARRIED_REACH {
+            return Err(check.refused(
+                place,
+                &format!("{field}[{k}]"),
+                format!(
+                    "expected a shape within {CARRIED_REACH} m of the robot's centre, found \
+                     one reaching {:.3} m",
+                    shape.reach()
+                ),
+            ));
+        }
+        shapes.push(shape);
+    }
+    Ok(shapes)
 }

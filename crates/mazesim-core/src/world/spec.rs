@@ -109,6 +109,31 @@ pub struct RobotSpec {
     /// The name of a built-in robot profile; the simulator's profile when absent.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub profile: Option<String>,
+    /// Shapes the robot carries beside its body (a bumper, a box on it), in its own frame,
+    /// which the other robots' infra-red rays and bodies meet; none by default.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub carried: Vec<CarriedSpec>,
+}
+
+/// `[[robots.carried]]`: a box (`size`) or an upright cylinder (`radius`) a robot carries, in
+/// the robot's frame (x ahead, y to its left).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CarriedSpec {
+    /// Centre in the robot's frame.
+    pub center: Point,
+    /// A box's extent along its own axes.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub size: Option<Size>,
+    /// A cylinder's radius.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub radius: Option<Positive>,
+    /// A box's rotation in the robot's frame, radians.
+    #[serde(default = "zero", skip_serializing_if = "is_zero")]
+    pub yaw: Finite,
+    /// Infra-red reflection factor.
+    #[serde(default = "white", skip_serializing_if = "is_white")]
+    pub reflectance: Reflectance,
 }
 
 fn zero() -> Finite {

@@ -1,0 +1,21 @@
+"""Listens on the channel its E-puck's receiver_channel field sets and notes who it heard."""
+
+import json
+import os
+
+from controller import Robot
+
+robot = Robot()
+time_step = int(robot.getBasicTimeStep())
+receiver = robot.getDevice("receiver")
+receiver.enable(time_step)
+log = {"channel": receiver.getChannel(), "heard": {}}
+steps = 0
+while robot.step(time_step) != -1 and steps < 10:
+    steps += 1
+    while receiver.getQueueLength() > 0:
+        text = receiver.getString()
+        log["heard"][text] = log["heard"].get(text, 0) + 1
+        receiver.nextPacket()
+with open(os.path.join(os.environ.get("SWARM_LOG", "."), f"{robot.getName()}.json"), "w") as out:
+    json.dump(log, out)
