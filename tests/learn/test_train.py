@@ -51,11 +51,15 @@ def test_interrupted_training_resumes_to_the_same_tables(tmp_path: Path) -> None
     # not finished; it is told the folder holds a navigator, and what to do.
     with pytest.raises(PolicyFormatError, match="already holds a trained navigator") as again:
         train(TINY, RunFolder(tmp_path / "whole"), progress=None)
-    assert "not finished" not in str(again.value) and "another --out" in str(again.value)
+    # The Python API names its own parameter, not the command's option (--out).
+    assert "not finished" not in str(again.value) and "choose another folder" in str(again.value)
     assert train(TINY, RunFolder(tmp_path / "parts"), progress=None, stop_after_rounds=1) is None
     assert (tmp_path / "parts" / "checkpoint.npz").exists()
     assert not (tmp_path / "parts" / "tables.npz").exists()
-    with pytest.raises(PolicyFormatError, match="a run that has not finished .*--resume"):
+    with pytest.raises(
+        PolicyFormatError,
+        match="a run that has not finished .*pass resume=True .*choose another folder$",
+    ):
         train(TINY, RunFolder(tmp_path / "parts"), progress=None)
     # Evaluating the unfinished navigator is told to finish it, not that a file is missing.
     with pytest.raises(PolicyFormatError, match="that has not finished .*again with --resume"):

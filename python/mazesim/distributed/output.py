@@ -109,7 +109,7 @@ def write_run_folder(out_dir: str, run_id: str, files: Mapping[str, bytes]) -> s
                 f"expected a plain file name for a run file, found {_shown(name)}"
             )
     runs = os.path.join(out_dir, RUNS_DIR)
-    make_output_folder(runs)
+    make_output_folder(runs, "out_dir")
     target = os.path.join(runs, run_id)
     temporary = tempfile.mkdtemp(prefix=f".{run_id}.", suffix=_TEMPORARY_SUFFIX, dir=runs)
     try:

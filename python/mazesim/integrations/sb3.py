@@ -150,7 +150,7 @@ def make_vec_env(
         return venv
     filename = None if monitor_dir is None else os.path.join(monitor_dir, "monitor")
     if monitor_dir is not None:
-        make_output_folder(monitor_dir)
+        make_output_folder(monitor_dir, "monitor_dir")
     return VecMonitor(venv, filename=filename, **(monitor_kwargs or {}))
 
 
