@@ -50,7 +50,7 @@ from stable_baselines3.common.vec_env.base_vec_env import (  # noqa: E402
 )
 
 from mazesim.envs.goal import MazeGoalVectorEnv  # noqa: E402
-from mazesim.envs.tasks import task_ids  # noqa: E402
+from mazesim.envs.tasks import FORMER_IDS, task_ids  # noqa: E402
 from mazesim.envs.vector import EPuckMazeVectorEnv  # noqa: E402
 
 __all__ = ["MazesimVecEnv", "make_vec_env"]
@@ -94,7 +94,9 @@ def make_vec_env(
     meaning, except the two that wrap single envs, which the batch engine does not have.
 
     Args:
-        env_id: A registered mazesim task (its options and time limit are used).
+        env_id: A registered mazesim task (its options and time limit are used), or a task's
+            former id (``mazesim/UnseenMaze-v1``), with gymnasium's warning that it is out of
+            date.
         n_envs: Number of environments.
         seed: Environment i is seeded with ``seed + start_index + i`` at the first reset (as SB3
             does).
@@ -132,7 +134,8 @@ def make_vec_env(
             f"expected vec_env_cls to be None or MazesimVecEnv, found {_shown(vec_env_cls)}"
         )
     keywords = {**(env_kwargs or {}), **(vec_env_kwargs or {}), **options}
-    _known_name(env_id, "env_id", task_ids())
+    if not (isinstance(env_id, str) and env_id in FORMER_IDS):  # made as gymnasium.make does
+        _known_name(env_id, "env_id", task_ids())
     vector = gymnasium.make_vec(
         env_id,
         n_envs,
