@@ -154,7 +154,8 @@ def register(commands: Any) -> None:
         type=figure_file,
         default=None,
         metavar="FILE",
-        help="draw the first episodes' trajectories on the maze into a PNG (Fig. 4.6 / 4.8)",
+        help="draw the first episodes' trajectories on the maze into a PNG, or a PDF or SVG "
+        "by its suffix (Fig. 4.6 / 4.8)",
     )
     evaluate.add_argument(
         "--address",
