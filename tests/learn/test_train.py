@@ -130,6 +130,10 @@ def test_eval_command_prints_json(capsys: pytest.CaptureFixture[str], tmp_path: 
     for key in ("episodes", "success_rate", "mean_collisions", "mean_steps", "mean_path_ratio"):
         assert key in values
     assert values["episodes"] == 2 and values["success_rate"] == 1.0
+    # What was measured travels with the figures, to compare runs of several seeds.
+    measured = values["measured"]
+    assert measured["seed"] == 0 and measured["world"] == "seed-maze"
+    assert measured["kind"] == "hierarchical" and measured["navigator"].endswith("seed-maze")
     text = trace.read_text()
     assert "checkpoint +1 (arrival) -> higher level:" in text
     assert "# goal reached after" in text
