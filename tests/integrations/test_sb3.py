@@ -289,3 +289,23 @@ def test_a_former_id_makes_its_tasks_env_through_the_adapter() -> None:
     assert np.array_equal(old.reset(), new.reset())
     actions = np.full((2, 2), 0.5, dtype=np.float32)
     assert np.array_equal(old.step(actions)[0], new.step(actions)[0])
+
+
+def test_sb3_trains_through_a_curriculum_wrapper_of_the_native_vector_env() -> None:
+    from gymnasium.vector import AutoresetMode
+
+    from mazesim.envs.curriculum import MazeSizeCurriculum, MazeSizeCurriculumWrapper
+
+    curriculum = MazeSizeCurriculum(((3, 3), (5, 5)), promote_at=1.0, window=4)
+    native = gymnasium.make_vec(
+        "mazesim/UnseenMazeExplore-v0",
+        4,
+        autoreset_mode=AutoresetMode.SAME_STEP,
+        max_episode_steps=20,
+    )
+    envs = MazesimVecEnv(MazeSizeCurriculumWrapper(native, curriculum))
+    assert envs.get_attr("spec")[0].id == "mazesim/UnseenMazeExplore-v0"
+    PPO("MlpPolicy", envs, n_steps=32, batch_size=64, seed=0, device="cpu").learn(128)
+    # The steps went through the wrapper: it counted the episodes that ended (at 20 steps).
+    assert curriculum.episodes[0] >= 4  # 32 steps of each of the 4 envs
+    assert native.unwrapped.options.maze_size == (3, 3)

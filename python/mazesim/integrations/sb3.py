@@ -159,27 +159,34 @@ def make_vec_env(
 
 class MazesimVecEnv(VecEnv):
     """An SB3 ``VecEnv`` over a native :class:`~mazesim.envs.EPuckMazeVectorEnv` (or
-    :class:`~mazesim.envs.goal.MazeGoalVectorEnv`, a goal-conditioned task's).
+    :class:`~mazesim.envs.goal.MazeGoalVectorEnv`, a goal-conditioned task's), bare or in
+    gymnasium vector wrappers that keep its observations and actions (a
+    :class:`~mazesim.envs.curriculum.MazeSizeCurriculumWrapper`, for one: SB3 then trains
+    through the curriculum).
 
     Args:
-        vector_env: The native vector env, made with ``autoreset_mode=AutoresetMode.SAME_STEP``.
+        vector_env: The native vector env, made with ``autoreset_mode=AutoresetMode.SAME_STEP``,
+            or a wrapper of it; its steps and resets go through the wrappers.
 
     Raises:
         InvalidArgumentError: The vector env is not native or does not reset in the same step.
     """
 
-    def __init__(self, vector_env: EPuckMazeVectorEnv | MazeGoalVectorEnv) -> None:
-        if not isinstance(vector_env, _NATIVE):
+    def __init__(self, vector_env: gymnasium.vector.VectorEnv) -> None:
+        native = getattr(vector_env, "unwrapped", None)
+        if not isinstance(native, _NATIVE):
             raise WrongTypeError(
-                "expected a mazesim EPuckMazeVectorEnv or MazeGoalVectorEnv, found "
-                f"{_a_type(vector_env)}"
+                "expected a mazesim EPuckMazeVectorEnv or MazeGoalVectorEnv, or a gymnasium "
+                f"vector wrapper of one, found {_a_type(vector_env)}"
             )
-        if vector_env.autoreset_mode != AutoresetMode.SAME_STEP:
+        if native.autoreset_mode != AutoresetMode.SAME_STEP:
             raise InvalidArgumentError(
                 "expected a vector env made with autoreset_mode=AutoresetMode.SAME_STEP "
-                f"(SB3 resets in the same step), found {vector_env.autoreset_mode}"
+                f"(SB3 resets in the same step), found {native.autoreset_mode}"
             )
-        self.vector_env = vector_env
+        #: What steps and resets go through (the wrappers, if any), and the native env, whose
+        #: attributes and methods are each environment's.
+        self.vector_env, self.native = vector_env, native
         self.render_mode = vector_env.render_mode
         super().__init__(
             vector_env.num_envs,
@@ -261,7 +268,7 @@ class MazesimVecEnv(VecEnv):
         one environment, not the vector env's batched ones, and ``spec`` is one environment's
         (``gymnasium.make(spec)`` makes an env of the same task, say for evaluation).
         """
-        value = getattr(self.vector_env, _PER_ENVIRONMENT.get(attr_name, attr_name))
+        value = getattr(self.native, _PER_ENVIRONMENT.get(attr_name, attr_name))
         return [value for _ in self._indices(indices)]
 
     def set_attr(self, attr_name: str, value: Any, indices: Any = None) -> None:
@@ -294,7 +301,7 @@ class MazesimVecEnv(VecEnv):
         if method_name == "render" and not method_args and not method_kwargs:
             frames = self.get_images()
             return [frames[i] for i in targets]
-        result = getattr(self.vector_env, method_name)(*method_args, **method_kwargs)
+        result = getattr(self.native, method_name)(*method_args, **method_kwargs)
         return [result for _ in targets]
 
     def env_is_wrapped(self, wrapper_class: type, indices: Any = None) -> list[bool]:
