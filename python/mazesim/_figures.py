@@ -21,7 +21,7 @@ import os
 import stat
 import warnings
 from collections.abc import Iterator
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from mazesim._atomic import atomic_file
 from mazesim._paths import output_path
@@ -120,7 +120,7 @@ def save_figure(
     import matplotlib
 
     kind = figure_format(path)
-    options: dict[str, object] = {"format": kind, **({} if dpi is None else {"dpi": dpi})}
+    options: dict[str, Any] = {"format": kind, **({} if dpi is None else {"dpi": dpi})}
     if kind in _UNDATED:
         options["metadata"] = _UNDATED[kind]
     with missing_glyphs_as_boxes(), matplotlib.rc_context({"svg.hashsalt": "mazesim"}):

@@ -184,9 +184,11 @@ class MazesimVecEnv(VecEnv):
                 "expected a vector env made with autoreset_mode=AutoresetMode.SAME_STEP "
                 f"(SB3 resets in the same step), found {native.autoreset_mode}"
             )
-        #: What steps and resets go through (the wrappers, if any), and the native env, whose
-        #: attributes and methods are each environment's.
-        self.vector_env, self.native = vector_env, native
+        #: What steps and resets go through: the wrappers, if any (typed Any: they take a list
+        #: of seeds, as the native env does, where gymnasium's types say one seed).
+        self.vector_env: Any = vector_env
+        #: The native env, whose attributes and methods are each environment's.
+        self.native = native
         self.render_mode = vector_env.render_mode
         super().__init__(
             vector_env.num_envs,
