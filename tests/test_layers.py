@@ -24,7 +24,7 @@ LAYERS: tuple[tuple[str, ...], ...] = (
     ("episodes.py", "integrations", "marl", "_gym_registration.py"),
     ("envs", "batch.py", "barcode"),
     ("maze.py", "odometry.py", "_seeding.py", "plotting.py", "webots", "benchmark",
-     "controllers.py", "actions.py", "_checks.py", "_pickling.py"),
+     "controllers.py", "actions.py", "_checks.py", "_pickling.py", "_display.py"),
     ("render", "_figures.py"),
     ("sensor_rays.py", "_atomic.py", "_closing.py", "_paths.py", "_sizes.py", "_toml.py",
      "_error_tree.py", "_callers.py", "_settings.py"),

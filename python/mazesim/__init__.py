@@ -15,8 +15,9 @@ Example:
 from __future__ import annotations
 
 import os
+import sys
 
-from mazesim import _checks, _core, _pickling
+from mazesim import _checks, _core, _display, _pickling
 from mazesim._core import (
     AvoidCollisionSettings,
     BatchSimulator,
@@ -53,6 +54,7 @@ from mazesim.errors import (
 # Every public module imported from here on gets the argument check (mazesim._checks).
 _checks.install()
 _pickling.refuse_unpicklable(_core)
+_display.install(World, Simulator)  # a notebook draws a world or a simulator, not its repr
 
 __all__ = [
     "AvoidCollisionSettings",
@@ -85,6 +87,7 @@ __all__ = [
     "sharp_volts_to_cm",
     "validate_codes",
 ]
+__dir__ = _checks.listing(sys.modules[__name__])  # dir(mazesim), mazesim.<Tab>: the API
 
 
 def load_world(name_or_path: str | os.PathLike[str]) -> World:

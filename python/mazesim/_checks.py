@@ -858,8 +858,29 @@ def public_names(module: types.ModuleType) -> list[str]:
     return found
 
 
+def listing(module: types.ModuleType) -> Callable[[], list[str]]:
+    """The module's ``__dir__``: what its ``__all__`` names, its imported public submodules and
+    its dunder names, without the names its code imported for itself (``os``, ``annotations``
+    of ``from __future__``), so that tab completion (``mazesim.<Tab>``, ``dir(mazesim)``) offers
+    the API."""
+
+    def __dir__() -> list[str]:
+        names = set(getattr(module, "__all__", ()))
+        for name, value in vars(module).items():
+            dunder = name.startswith("__") and name.endswith("__")
+            submodule = isinstance(value, types.ModuleType) and not name.startswith("_")
+            if dunder or (submodule and value.__name__ == f"{module.__name__}.{name}"):
+                names.add(name)
+        return sorted(names)
+
+    return __dir__
+
+
 def guard_module(module: types.ModuleType) -> None:
-    """Puts the check on every public function and method of ``module``."""
+    """Puts the check on every public function and method of ``module``, and gives a module
+    with an ``__all__`` and no ``__dir__`` of its own the :func:`listing` of its API."""
+    if hasattr(module, "__all__") and "__dir__" not in vars(module):
+        module.__dir__ = listing(module)  # type: ignore[method-assign]
     for name in public_names(module):
         obj = getattr(module, name)
         if inspect.isfunction(obj):

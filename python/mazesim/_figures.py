@@ -1,14 +1,16 @@
-"""PNG files of matplotlib figures: the one place a figure of mazesim is laid out and saved.
+"""Files of matplotlib figures: the one place a figure of mazesim is laid out and saved.
 
 A title or label may hold characters the installed fonts lack (a world named in Chinese or with
 an emoji): matplotlib draws each as an empty box and warns once per character, and under
 ``PYTHONWARNINGS=error`` (or ``-W error``) that warning became an error that stopped the command
-after its run. :func:`save_png` draws them as boxes without the warning, and writes the file
+after its run. :func:`save_figure` draws them as boxes without the warning, and writes the file
 atomically (:func:`mazesim._atomic.atomic_file`).
 
-A figure is written as PNG whatever its file is named: a name with another suffix (``x.txt``,
-``plot.pdf``) is refused, by :func:`save_png` before anything is written and by the command-line
-options that name a figure (:func:`figure_file`) before the command runs.
+A figure is written in the format its file's suffix names: PNG, or PDF and SVG for a paper's
+vector figures (written without a creation date, and SVG with fixed ids, so the same figure gives
+the same bytes); a name without a suffix, or a device or FIFO, gets PNG. A name with another suffix
+(``x.txt``, ``plot.jpg``) is refused, by :func:`save_figure` before anything is written and by the
+command-line options that name a figure (:func:`figure_file`) before the command runs.
 """
 
 from __future__ import annotations
@@ -19,11 +21,11 @@ import os
 import stat
 import warnings
 from collections.abc import Iterator
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from mazesim._atomic import atomic_file
 from mazesim._paths import output_path
-from mazesim.errors import InvalidArgumentError
+from mazesim.errors import InvalidArgumentError, _shown
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -31,9 +33,10 @@ if TYPE_CHECKING:
 __all__ = [
     "FIGURE_SUFFIXES",
     "figure_file",
+    "figure_format",
     "figure_suffix_refusal",
     "missing_glyphs_as_boxes",
-    "save_png",
+    "save_figure",
 ]
 
 #: matplotlib's warning of a character no font it tried has ("Glyph 36855 (...) missing from
@@ -41,23 +44,35 @@ __all__ = [
 _MISSING_GLYPH = r"Glyph \d+ .*missing from font"
 
 
-#: The suffixes a figure's file may have (any case): the one format :func:`save_png` writes. A
-#: name without a suffix (``plot``) takes it too, and so does something that is not a file
+#: The suffixes a figure's file may have (any case), each the format :func:`save_figure` writes.
+#: A name without a suffix (``plot``) gets PNG, and so does something that is not a file
 #: (``/dev/stdout``, a FIFO, a device), whose name says nothing of what goes through it.
-FIGURE_SUFFIXES = (".png",)
+FIGURE_SUFFIXES = (".png", ".pdf", ".svg")
+#: What each vector format would otherwise vary from one run to the next (the time it was
+#: written), left out.
+_UNDATED = {"pdf": {"CreationDate": None}, "svg": {"Date": None}}
 
 
 def figure_suffix_refusal(path: str | os.PathLike[str]) -> str | None:
-    """Why a PNG cannot honestly be written to ``path`` (its name ends in another suffix), or
-    None."""
+    """Why a figure cannot honestly be written to ``path`` (its name ends in a suffix of no
+    format :func:`save_figure` writes), or None."""
     name = os.fsdecode(os.fspath(path))
     suffix = os.path.splitext(name)[1]
     if not suffix or suffix.lower() in FIGURE_SUFFIXES or _special(name):
         return None
     return (
-        f"expected a figure file ending in {' or '.join(FIGURE_SUFFIXES)} (figures are written as "
-        f"PNG), found {name!r}, ending in {suffix!r}"
+        f"expected a figure file ending in {', '.join(FIGURE_SUFFIXES[:-1])} or "
+        f"{FIGURE_SUFFIXES[-1]} (figures are written as PNG, PDF or SVG), found {_shown(name)}, "
+        f"ending in {_shown(suffix)}"
     )
+
+
+def figure_format(path: str | os.PathLike[str]) -> str:
+    """The format :func:`save_figure` writes to ``path``: its suffix's (``"pdf"``, ``"svg"``),
+    else ``"png"``."""
+    name = os.fsdecode(os.fspath(path))
+    suffix = os.path.splitext(name)[1].lower()
+    return suffix[1:] if suffix in FIGURE_SUFFIXES and not _special(name) else "png"
 
 
 def _special(name: str) -> bool:
@@ -88,11 +103,12 @@ def missing_glyphs_as_boxes() -> Iterator[None]:
         yield
 
 
-def save_png(
+def save_figure(
     figure: Figure, path: str | os.PathLike[str], *, tight: bool = True, dpi: float | None = None
 ) -> None:
     """Lays ``figure`` out (``tight_layout`` unless ``tight`` is False) and writes it to ``path``
-    as a PNG, atomically, at ``dpi`` (the figure's own when None).
+    in the format of its suffix (:func:`figure_format`: PNG, PDF or SVG), atomically, at ``dpi``
+    (the figure's own when None).
 
     Raises:
         InvalidArgumentError: ``path`` ends in a suffix other than those of
@@ -101,11 +117,14 @@ def save_png(
     refusal = figure_suffix_refusal(path)
     if refusal is not None:
         raise InvalidArgumentError(refusal)
-    with missing_glyphs_as_boxes():
+    import matplotlib
+
+    kind = figure_format(path)
+    options: dict[str, Any] = {"format": kind, **({} if dpi is None else {"dpi": dpi})}
+    if kind in _UNDATED:
+        options["metadata"] = _UNDATED[kind]
+    with missing_glyphs_as_boxes(), matplotlib.rc_context({"svg.hashsalt": "mazesim"}):
         if tight:
             figure.tight_layout()
         with atomic_file(path) as handle:
-            if dpi is None:
-                figure.savefig(handle, format="png")
-            else:
-                figure.savefig(handle, format="png", dpi=dpi)
+            figure.savefig(handle, **options)

@@ -21,6 +21,7 @@ from mazesim.errors import (
     MazesimError,
     MazesimIOError,
     UnknownNameError,
+    _argument,
     _closest_name,
     _shown,
 )
@@ -28,6 +29,7 @@ from mazesim.errors import _path_of as fs_path
 
 __all__ = [
     "MAX_TEXT_CHARACTERS",
+    "another_output_folder",
     "cache_folder",
     "file_name_of",
     "file_described",
@@ -468,12 +470,14 @@ def output_file(text: str) -> str:
     return text
 
 
-def make_output_folder(folder: str | os.PathLike[str]) -> None:
+def make_output_folder(folder: str | os.PathLike[str], parameter: str = "folder") -> None:
     """Makes the output folder ``folder`` and its parents, unless it is a folder already.
 
     Every command and function that writes into a folder makes it here, so that a path that is
     something else (a file, ``/dev/full``, a FIFO) or cannot be made is refused saying what was
-    expected and what was found, not with the system's bare "File exists".
+    expected and what was found, not with the system's bare "File exists", and what to change:
+    ``--out`` on the command line, else ``parameter``, the caller's parameter that named the
+    folder (:func:`mazesim.errors._argument`).
 
     Raises:
         MazesimIOError: ``folder`` is not a folder, or it cannot be made.
@@ -487,10 +491,11 @@ def make_output_folder(folder: str | os.PathLike[str]) -> None:
         else:
             mode = os.stat(path).st_mode
             kind = "a file" if stat.S_ISREG(mode) else _kind_of(mode)
-        raise _folder_failure(path, f"expected an output folder, found {kind}", error) from None
+        found = f"expected an output folder, found {kind}"
+        raise _folder_failure(path, found, error, parameter) from None
     except OSError as error:
-        reason = error.strerror or str(error)
-        raise _folder_failure(path, f"cannot make the output folder: {reason}", error) from None
+        reason = f"cannot make the output folder: {error.strerror or error}"
+        raise _folder_failure(path, reason, error, parameter) from None
 
 
 def cache_folder(variable: str, name: str, *, under_variable: bool = False) -> Path:
@@ -528,10 +533,16 @@ def cache_folder(variable: str, name: str, *, under_variable: bool = False) -> P
     return folder
 
 
-def _folder_failure(path: str, reason: str, error: OSError) -> MazesimIOError:
-    failure = MazesimIOError(f"{path}: {reason}; choose another output folder")
+def _folder_failure(path: str, reason: str, error: OSError, parameter: str) -> MazesimIOError:
+    failure = MazesimIOError(f"{path}: {reason}; {another_output_folder(parameter)}")
     failure.errno, failure.strerror, failure.filename = error.errno, error.strerror, path
     return failure
+
+
+def another_output_folder(parameter: str) -> str:
+    """What to do about an output folder that cannot be used: choose another ``--out`` (on the
+    command line), or another ``parameter`` (in Python)."""
+    return f"choose another {_argument('--out', parameter)}"
 
 
 @contextlib.contextmanager
@@ -570,7 +581,7 @@ def writing_alone(
         except BlockingIOError:
             raise MazesimIOError(
                 f"{path}: another process is writing into this folder (a {command} started "
-                f"twice?); wait for it to end, or choose another output folder"
+                f"twice?); wait for it to end, or {another_output_folder('folder')}"
             ) from None
         yield
     finally:

@@ -12,10 +12,11 @@ to ``None``.
 
 from __future__ import annotations
 
+import contextlib
 import difflib
 import os
 import re
-from collections.abc import Collection
+from collections.abc import Collection, Iterator
 from typing import Annotated
 
 __all__ = [
@@ -65,6 +66,32 @@ def _words_shortened(message: str) -> str:
     :func:`_shortened`: a message of the compiled core, or one that quotes a value with ``str``,
     quotes a path or a name of a million characters as a line."""
     return _LONG_WORD.sub(lambda word: _shortened(word.group()), message)
+
+
+#: Whether a ``mazesim`` command is running: :func:`mazesim.cli.main` sets it while the command
+#: runs (:func:`_command_line`), so that a message names what the user can change as the user
+#: gave it (:func:`_argument`): the command's option (``--out``), else the Python parameter.
+_ON_COMMAND_LINE = [False]
+
+
+def _argument(option: str, parameter: str) -> str:
+    """How a message names an argument the user may change: its command-line ``option``
+    (``"--out"``, ``"--resume"``) while a ``mazesim`` command runs, else the Python ``parameter``
+    of the function called (``"monitor_dir"``, ``"resume=True"``): the one source of the words
+    "choose another --out" on the command line and "choose another monitor_dir" in Python."""
+    return option if _ON_COMMAND_LINE[0] else parameter
+
+
+@contextlib.contextmanager
+def _command_line() -> Iterator[None]:
+    """Makes :func:`_argument` name command-line options while the block runs (a command's
+    run, in :func:`mazesim.cli.main`); the former naming after it, however it ends."""
+    before = _ON_COMMAND_LINE[0]
+    _ON_COMMAND_LINE[0] = True
+    try:
+        yield
+    finally:
+        _ON_COMMAND_LINE[0] = before
 
 
 def _shown(value: object) -> str:

@@ -26,7 +26,7 @@ from matplotlib.lines import Line2D
 from matplotlib.patches import Circle, FancyArrow, Patch, Polygon
 from matplotlib.path import Path
 
-from mazesim._figures import save_png
+from mazesim._figures import save_figure
 from mazesim.errors import InvalidArgumentError
 from mazesim.render.topdown import _number, _pair
 
@@ -353,7 +353,8 @@ def save_trajectory_png(
     title: str | None = None,
     collisions: npt.ArrayLike | None = None,
 ) -> None:
-    """Draws a world with a robot's path on top and writes it as a PNG file.
+    """Draws a world with a robot's path on top and writes it as a PNG file (or PDF or SVG, by
+    the suffix of ``path``).
 
     The legend names the walls, paint, checkpoints, start pose and goal, and the path, its start
     and end and the places where the robot touched a wall.
@@ -364,7 +365,8 @@ def save_trajectory_png(
         world: The world the robot drove in.
         xs: The x coordinates of the path in metres.
         ys: The y coordinates of the path in metres, as many as ``xs``.
-        path: The PNG file to write; its folder must exist.
+        path: The file to write (``.png``, ``.pdf``, ``.svg``, or no suffix: PNG); its folder
+            must exist.
         title: A title above the picture; by default the world's name.
         collisions: (K, 2) positions where the robot touched a wall, marked with crosses.
 
@@ -420,7 +422,7 @@ def save_trajectory_png(
             )
     trajectory_legend(ax, world, extra)
     ax.set_title(world.name if title is None else title)
-    save_png(figure, path)
+    save_figure(figure, path)
 
 
 def save_robot_paths_png(
@@ -430,12 +432,13 @@ def save_robot_paths_png(
     title: str | None = None,
 ) -> None:
     """Draws a world with several robots' paths, one colour each, and writes it as a PNG file
-    (atomically).
+    (or PDF or SVG, by the suffix of ``path``), atomically.
 
     Args:
         world: The world the robots drove in.
         paths: Each robot's name, x and y coordinates (metres).
-        path: The PNG file to write; its folder must exist.
+        path: The file to write (``.png``, ``.pdf``, ``.svg``, or no suffix: PNG); its folder
+            must exist.
         title: A title above the picture; by default the world's name.
     """
     figure, ax = world_figure(world, 8.0, (3.0, 9.0), 0.6)
@@ -456,4 +459,4 @@ def save_robot_paths_png(
         ax.plot(path_x[-1:], path_y[-1:], marker="o", markersize=4, color=colour, zorder=8)
     trajectory_legend(ax, world, extra)
     ax.set_title(world.name if title is None else title)
-    save_png(figure, path)
+    save_figure(figure, path)

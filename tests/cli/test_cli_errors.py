@@ -11,6 +11,7 @@ from pathlib import Path
 import pytest
 
 from mazesim.cli import main
+from mazesim.errors import MazesimIOError
 from mazesim_process import mazesim_command
 from ros_support import needs_ros
 
@@ -181,9 +182,39 @@ def test_an_os_error_names_the_file_and_the_reason_not_its_errno(
     assert main(["webots", "run", str(WBT), "--seconds", "1", "--out", str(device)]) == 2
     assert capsys.readouterr().err == (
         f"mazesim: error: {device}: expected an output folder, found a character device; "
-        "choose another output folder\n"
+        "choose another --out\n"
     )
     assert device.is_char_device()
+
+
+def test_an_unusable_output_folder_is_named_as_the_user_gave_it(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """The one message names the command's option on the command line, the function's parameter
+    in Python, and Python's again after a command has run."""
+    from mazesim.learn import load_policy, save_policy
+
+    (tmp_path / "a-file").write_text("kept\n")
+    out = str(tmp_path / "a-file")
+    assert main(["demo", "--seconds", "1", "--out", out]) == 2
+    assert capsys.readouterr().err == (
+        f"mazesim: error: {out}: expected an output folder, found a file; choose another --out\n"
+    )
+    with pytest.raises(MazesimIOError) as refused:
+        save_policy(load_policy(), out)
+    assert str(refused.value).endswith("found a file; choose another folder")
+    assert (tmp_path / "a-file").read_text() == "kept\n"
+
+
+def test_an_unfinished_run_is_told_to_pass_the_option_that_resumes_it(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    (tmp_path / "run").mkdir()
+    (tmp_path / "run" / "checkpoint.npz").write_bytes(b"")
+    command = ["train", "--out", str(tmp_path / "run"), "--no-progress"]
+    assert main(command) == 2
+    err = capsys.readouterr().err
+    assert err.endswith("pass --resume to continue it, or choose another --out\n"), err
 
 
 @pytest.mark.parametrize("command", ["show", "demo", "eval", "train"])

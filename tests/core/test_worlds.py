@@ -391,6 +391,35 @@ def test_a_grid_row_cut_short_names_its_line_instead_of_opening_the_wall() -> No
     assert not opened.cell_maze()["vertical"][1, 2]
 
 
+@pytest.mark.parametrize(
+    ("edit", "said"),
+    [
+        (("version = 1", "version = 1.0"), "`version`: expected a whole number, found floating"),
+        (("cell_size = 0.25", 'cell_size = "0.25"'), 'expected a number, found string "0.25"'),
+        (("reflectance = 0.36", "reflectance = true"), "expected a number, found boolean `true`"),
+        (('name = "seed-maze"', "name = 5"), "`name`: expected a string, found integer `5`"),
+    ],
+)
+def test_a_value_of_the_wrong_type_in_a_world_file_is_said_in_words(
+    edit: tuple[str, str], said: str
+) -> None:
+    """A hand-edited world file is told what a field takes as its author would say it: no
+    type names of the reader's language (``f64``, ``i64``), and what was expected first."""
+    text = World.builtin("seed-maze").to_toml()
+    assert edit[0] in text
+    with pytest.raises(WorldFormatError) as caught:
+        World.from_toml(text.replace(edit[0], edit[1], 1), source="edited.toml")
+    message = str(caught.value)
+    assert said in message, message
+    assert not re.search(r"\b[fiu](8|16|32|64)\b|invalid type", message), message
+
+
+def test_a_robot_file_of_a_wrong_type_is_said_in_the_same_words() -> None:
+    text = mazesim.RobotProfile.builtin("e-puck").to_toml()
+    with pytest.raises(WorldFormatError, match=r"`body_radius`: expected a number, found string"):
+        mazesim.RobotProfile.from_toml(text.replace("body_radius = 0.037", 'body_radius = "x"'))
+
+
 def test_load_world_reads_a_path(tmp_path: Path) -> None:
     arena = mazesim.load_world("arena")
     path = tmp_path / "my-arena.toml"

@@ -51,11 +51,15 @@ def test_interrupted_training_resumes_to_the_same_tables(tmp_path: Path) -> None
     # not finished; it is told the folder holds a navigator, and what to do.
     with pytest.raises(PolicyFormatError, match="already holds a trained navigator") as again:
         train(TINY, RunFolder(tmp_path / "whole"), progress=None)
-    assert "not finished" not in str(again.value) and "another --out" in str(again.value)
+    # The Python API names its own parameter, not the command's option (--out).
+    assert "not finished" not in str(again.value) and "choose another folder" in str(again.value)
     assert train(TINY, RunFolder(tmp_path / "parts"), progress=None, stop_after_rounds=1) is None
     assert (tmp_path / "parts" / "checkpoint.npz").exists()
     assert not (tmp_path / "parts" / "tables.npz").exists()
-    with pytest.raises(PolicyFormatError, match="a run that has not finished .*--resume"):
+    with pytest.raises(
+        PolicyFormatError,
+        match="a run that has not finished .*pass resume=True .*choose another folder$",
+    ):
         train(TINY, RunFolder(tmp_path / "parts"), progress=None)
     # Evaluating the unfinished navigator is told to finish it, not that a file is missing.
     with pytest.raises(PolicyFormatError, match="that has not finished .*again with --resume"):
@@ -126,6 +130,10 @@ def test_eval_command_prints_json(capsys: pytest.CaptureFixture[str], tmp_path: 
     for key in ("episodes", "success_rate", "mean_collisions", "mean_steps", "mean_path_ratio"):
         assert key in values
     assert values["episodes"] == 2 and values["success_rate"] == 1.0
+    # What was measured travels with the figures, to compare runs of several seeds.
+    measured = values["measured"]
+    assert measured["seed"] == 0 and measured["world"] == "seed-maze"
+    assert measured["kind"] == "hierarchical" and measured["navigator"].endswith("seed-maze")
     text = trace.read_text()
     assert "checkpoint +1 (arrival) -> higher level:" in text
     assert "# goal reached after" in text

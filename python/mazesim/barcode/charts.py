@@ -17,7 +17,7 @@ from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
 from mazesim._atomic import atomic_file
-from mazesim._figures import save_png
+from mazesim._figures import save_figure
 from mazesim._paths import make_output_folder
 from mazesim.barcode.study import StudyResult, Tally
 
@@ -111,7 +111,7 @@ def save_study_chart(
     axes[0].set_ylabel("readings (%)")
     axes[-1].legend(loc="center right", fontsize=8)
     figure.suptitle(title, fontsize=10)
-    save_png(figure, path)
+    save_figure(figure, path)
 
 
 def write_study_files(result: StudyResult, folder: str | os.PathLike[str]) -> list[str]:

@@ -19,7 +19,7 @@ from typing import Any, NoReturn
 import mazesim
 from mazesim._error_tree import io_error
 from mazesim.cli._help import CommandParser, examples
-from mazesim.errors import MazesimError, _closest_name
+from mazesim.errors import MazesimError, _closest_name, _command_line
 
 __all__ = ["COMMANDS", "build_parser", "main"]
 
@@ -316,7 +316,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     if command == "ros2":
         args.ros_arguments = ros_arguments
     try:
-        return int(args.run(args))
+        with _command_line():  # messages name the options (--out), not Python's parameters
+            return int(args.run(args))
     except BrokenPipeError as error:
         if not _stdout_is_a_pipe():
             print(f"mazesim: error: {_one_line(str(error))}", file=sys.stderr)

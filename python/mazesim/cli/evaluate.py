@@ -140,7 +140,7 @@ def register(commands: Any) -> None:
         "--json",
         action="store_true",
         help='print one JSON object: {"episodes", "success_rate", "mean_collisions", '
-        '"mean_steps", "mean_path_ratio", ...}',
+        '"mean_steps", "mean_path_ratio", ..., "measured": {"navigator", "world", "seed", ...}}',
     )
     evaluate.add_argument(
         "--trace",
@@ -154,7 +154,8 @@ def register(commands: Any) -> None:
         type=figure_file,
         default=None,
         metavar="FILE",
-        help="draw the first episodes' trajectories on the maze into a PNG (Fig. 4.6 / 4.8)",
+        help="draw the first episodes' trajectories on the maze into a PNG, or a PDF or SVG "
+        "by its suffix (Fig. 4.6 / 4.8)",
     )
     evaluate.add_argument(
         "--address",
@@ -235,6 +236,15 @@ def run_eval(args: argparse.Namespace, out: TextIO) -> int:
         values: dict[str, Any] = first.as_json()
         for source in sources[1:]:
             values[f"{source}_decoder"] = summaries[source].as_json()
+        # What was measured, so that results of several seeds or navigators compare side by side.
+        values["measured"] = {
+            "navigator": str(policy.source),
+            "kind": policy.kind,
+            "world": label,
+            "seed": args.seed,
+            "max_steps": args.max_steps,
+            "robot": args.robot,
+        }
         out.write(json.dumps(values) + "\n")
         return 0
     source_names = {

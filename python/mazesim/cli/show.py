@@ -54,7 +54,12 @@ def register(commands: Any) -> None:
         help="a built-in world name, a .toml or a .wbt; several: a picture each",
     )
     show.add_argument(
-        "-o", "--out", type=figure_file, default=None, metavar="FILE.png", help="the PNG to write"
+        "-o",
+        "--out",
+        type=figure_file,
+        default=None,
+        metavar="FILE.png",
+        help="the picture to write: PNG, or PDF or SVG by its suffix (FILE.pdf, FILE.svg)",
     )
     show.add_argument(
         "--open",

@@ -32,7 +32,7 @@ from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
 from mazesim._atomic import atomic_file
-from mazesim._figures import save_png
+from mazesim._figures import save_figure
 from mazesim._paths import make_output_folder, read_input
 from mazesim.distributed.config import Setting
 from mazesim.distributed.tasks import RUN_FILE
@@ -109,7 +109,7 @@ def write_run_folder(out_dir: str, run_id: str, files: Mapping[str, bytes]) -> s
                 f"expected a plain file name for a run file, found {_shown(name)}"
             )
     runs = os.path.join(out_dir, RUNS_DIR)
-    make_output_folder(runs)
+    make_output_folder(runs, "out_dir")
     target = os.path.join(runs, run_id)
     temporary = tempfile.mkdtemp(prefix=f".{run_id}.", suffix=_TEMPORARY_SUFFIX, dir=runs)
     try:
@@ -225,6 +225,6 @@ def save_plot(path: str, title: str, runs: Sequence[Mapping[str, Any]]) -> None:
     axes[1].set_xticks(positions)
     axes[1].set_xticklabels([label for label, _ in groups], rotation=30, ha="right", fontsize=8)
     try:
-        save_png(figure, path)
+        save_figure(figure, path)
     except OSError as error:
         raise MazesimIOError(f"cannot write the sweep plot {_shown(path)}: {error}") from error

@@ -90,7 +90,7 @@ class _SweepFolder:
         self.started = time.perf_counter()
         self.started_at = datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds")
         self.summary = SweepSummary(out_dir=out_dir, runs=[], runner=runner)
-        make_output_folder(out_dir)
+        make_output_folder(out_dir, "out_dir")
         remove_leftovers(out_dir)
         with atomic_file(os.path.join(out_dir, "sweep.toml")) as handle:
             handle.write(config.text.encode("utf-8"))

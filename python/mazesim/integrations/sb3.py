@@ -50,7 +50,7 @@ from stable_baselines3.common.vec_env.base_vec_env import (  # noqa: E402
 )
 
 from mazesim.envs.goal import MazeGoalVectorEnv  # noqa: E402
-from mazesim.envs.tasks import task_ids  # noqa: E402
+from mazesim.envs.tasks import FORMER_IDS, task_ids  # noqa: E402
 from mazesim.envs.vector import EPuckMazeVectorEnv  # noqa: E402
 
 __all__ = ["MazesimVecEnv", "make_vec_env"]
@@ -94,7 +94,9 @@ def make_vec_env(
     meaning, except the two that wrap single envs, which the batch engine does not have.
 
     Args:
-        env_id: A registered mazesim task (its options and time limit are used).
+        env_id: A registered mazesim task (its options and time limit are used), or a task's
+            former id (``mazesim/UnseenMaze-v1``), with gymnasium's warning that it is out of
+            date.
         n_envs: Number of environments.
         seed: Environment i is seeded with ``seed + start_index + i`` at the first reset (as SB3
             does).
@@ -132,7 +134,8 @@ def make_vec_env(
             f"expected vec_env_cls to be None or MazesimVecEnv, found {_shown(vec_env_cls)}"
         )
     keywords = {**(env_kwargs or {}), **(vec_env_kwargs or {}), **options}
-    _known_name(env_id, "env_id", task_ids())
+    if not (isinstance(env_id, str) and env_id in FORMER_IDS):  # made as gymnasium.make does
+        _known_name(env_id, "env_id", task_ids())
     vector = gymnasium.make_vec(
         env_id,
         n_envs,
@@ -150,33 +153,42 @@ def make_vec_env(
         return venv
     filename = None if monitor_dir is None else os.path.join(monitor_dir, "monitor")
     if monitor_dir is not None:
-        make_output_folder(monitor_dir)
+        make_output_folder(monitor_dir, "monitor_dir")
     return VecMonitor(venv, filename=filename, **(monitor_kwargs or {}))
 
 
 class MazesimVecEnv(VecEnv):
     """An SB3 ``VecEnv`` over a native :class:`~mazesim.envs.EPuckMazeVectorEnv` (or
-    :class:`~mazesim.envs.goal.MazeGoalVectorEnv`, a goal-conditioned task's).
+    :class:`~mazesim.envs.goal.MazeGoalVectorEnv`, a goal-conditioned task's), bare or in
+    gymnasium vector wrappers that keep its observations and actions (a
+    :class:`~mazesim.envs.curriculum.MazeSizeCurriculumWrapper`, for one: SB3 then trains
+    through the curriculum).
 
     Args:
-        vector_env: The native vector env, made with ``autoreset_mode=AutoresetMode.SAME_STEP``.
+        vector_env: The native vector env, made with ``autoreset_mode=AutoresetMode.SAME_STEP``,
+            or a wrapper of it; its steps and resets go through the wrappers.
 
     Raises:
         InvalidArgumentError: The vector env is not native or does not reset in the same step.
     """
 
-    def __init__(self, vector_env: EPuckMazeVectorEnv | MazeGoalVectorEnv) -> None:
-        if not isinstance(vector_env, _NATIVE):
+    def __init__(self, vector_env: gymnasium.vector.VectorEnv) -> None:
+        native = getattr(vector_env, "unwrapped", None)
+        if not isinstance(native, _NATIVE):
             raise WrongTypeError(
-                "expected a mazesim EPuckMazeVectorEnv or MazeGoalVectorEnv, found "
-                f"{_a_type(vector_env)}"
+                "expected a mazesim EPuckMazeVectorEnv or MazeGoalVectorEnv, or a gymnasium "
+                f"vector wrapper of one, found {_a_type(vector_env)}"
             )
-        if vector_env.autoreset_mode != AutoresetMode.SAME_STEP:
+        if native.autoreset_mode != AutoresetMode.SAME_STEP:
             raise InvalidArgumentError(
                 "expected a vector env made with autoreset_mode=AutoresetMode.SAME_STEP "
-                f"(SB3 resets in the same step), found {vector_env.autoreset_mode}"
+                f"(SB3 resets in the same step), found {native.autoreset_mode}"
             )
-        self.vector_env = vector_env
+        #: What steps and resets go through: the wrappers, if any (typed Any: they take a list
+        #: of seeds, as the native env does, where gymnasium's types say one seed).
+        self.vector_env: Any = vector_env
+        #: The native env, whose attributes and methods are each environment's.
+        self.native = native
         self.render_mode = vector_env.render_mode
         super().__init__(
             vector_env.num_envs,
@@ -258,7 +270,7 @@ class MazesimVecEnv(VecEnv):
         one environment, not the vector env's batched ones, and ``spec`` is one environment's
         (``gymnasium.make(spec)`` makes an env of the same task, say for evaluation).
         """
-        value = getattr(self.vector_env, _PER_ENVIRONMENT.get(attr_name, attr_name))
+        value = getattr(self.native, _PER_ENVIRONMENT.get(attr_name, attr_name))
         return [value for _ in self._indices(indices)]
 
     def set_attr(self, attr_name: str, value: Any, indices: Any = None) -> None:
@@ -291,7 +303,7 @@ class MazesimVecEnv(VecEnv):
         if method_name == "render" and not method_args and not method_kwargs:
             frames = self.get_images()
             return [frames[i] for i in targets]
-        result = getattr(self.vector_env, method_name)(*method_args, **method_kwargs)
+        result = getattr(self.native, method_name)(*method_args, **method_kwargs)
         return [result for _ in targets]
 
     def env_is_wrapped(self, wrapper_class: type, indices: Any = None) -> list[bool]:

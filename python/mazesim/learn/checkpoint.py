@@ -16,8 +16,8 @@ import os
 from pathlib import Path
 from typing import Any
 
-from mazesim._paths import make_output_folder, shell_command
-from mazesim.errors import InvalidArgumentError, PolicyFormatError
+from mazesim._paths import another_output_folder, make_output_folder, shell_command
+from mazesim.errors import InvalidArgumentError, PolicyFormatError, _argument
 from mazesim.learn.schema import differing
 from mazesim.learn.tables import (
     CHECKPOINT_FILE,
@@ -132,23 +132,24 @@ class RunFolder:
             if not checkpoint_exists(folder):
                 raise PolicyFormatError(
                     f"{folder / CHECKPOINT_FILE}: no checkpoint to resume from; a run writes one "
-                    "into its output folder as it trains: start a fresh run there without resume "
-                    "(mazesim train: without --resume)"
+                    f"into its output folder as it trains: start a fresh run there without "
+                    f"{_argument('--resume', 'resume')}"
                 )
             saved = read_checkpoint(folder, settings)
             self.resumed_seconds = saved.lower_seconds
         elif (folder / METADATA_FILE).exists():
             # A finished run keeps its checkpoint beside the navigator it saved last.
+            measure = shell_command("mazesim", "eval", "--policy", folder)
             raise PolicyFormatError(
                 f"{folder} already holds a trained navigator ({METADATA_FILE}, tables.npz) and "
-                f"its run's checkpoint: choose another --out for a new one, or delete {folder} "
-                f"to train afresh there ('{shell_command('mazesim', 'eval', '--policy', folder)}' "
-                "measures the one it holds)"
+                f"its run's checkpoint: {another_output_folder('folder')} for a new one, or delete "
+                f"{folder} to train afresh there ('{measure}' measures the one it holds)"
             )
         elif checkpoint_exists(folder):
             raise PolicyFormatError(
                 f"{folder} holds the checkpoint of a run that has not finished (interrupted, or "
-                "still running): pass --resume to continue it, or choose another --out"
+                f"still running): pass {_argument('--resume', 'resume=True')} to continue it, or "
+                f"{another_output_folder('folder')}"
             )
         make_output_folder(folder)
         remove_checkpoint_leftovers(folder)

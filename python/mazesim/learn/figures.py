@@ -16,7 +16,7 @@ import numpy as np
 import numpy.typing as npt
 
 from mazesim._core import World
-from mazesim._figures import save_png
+from mazesim._figures import save_figure
 from mazesim.learn.subtasks import SUBTASK_CODES, SUBTASK_NAMES
 from mazesim.plotting import START_COLOR, trajectory_legend, world_figure
 
@@ -102,4 +102,4 @@ def save_episodes_png(
         )
     trajectory_legend(ax, world, extra)
     ax.set_title(title, fontsize=9)
-    save_png(figure, path)
+    save_figure(figure, path)

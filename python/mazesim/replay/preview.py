@@ -20,7 +20,7 @@ from matplotlib.lines import Line2D
 
 from mazesim import load_world
 from mazesim._core import World
-from mazesim._figures import save_png
+from mazesim._figures import save_figure
 from mazesim.plotting import plot_world, world_legend_handles
 
 __all__ = ["GRID_COLOR", "load_with_warnings", "save_world_preview"]
@@ -122,7 +122,7 @@ def save_world_preview(
         if len(warnings) > 25:
             notes.append(f"... and {len(warnings) - 25} more")
         figure.text(0.66, 0.08, "\n".join(notes), fontsize=7, va="bottom", ha="left", wrap=True)
-    save_png(figure, path, tight=False)
+    save_figure(figure, path, tight=False)
 
 
 def load_with_warnings(name_or_path: str) -> tuple[World, list[str] | None]:

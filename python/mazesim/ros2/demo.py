@@ -58,7 +58,7 @@ def run_demo(
         MazesimError: The bridge failed or did not finish in time.
     """
     robot = demo_robot(controller, robot)
-    make_output_folder(out)
+    make_output_folder(out, "out")
     bag = out / "bag"
     if bag.exists():
         raise MazesimIOError(f"expected a new bag folder; found {bag}, which exists")

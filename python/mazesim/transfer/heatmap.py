@@ -19,7 +19,7 @@ from matplotlib.figure import Figure
 from matplotlib.image import AxesImage
 
 from mazesim._atomic import atomic_file
-from mazesim._figures import save_png
+from mazesim._figures import save_figure
 from mazesim._paths import make_output_folder
 from mazesim.transfer.result import StudyResult
 
@@ -34,7 +34,7 @@ def _save(figure: Figure, plot: Axes, image: AxesImage, title: str, path: str) -
     figure.colorbar(image, ax=plot, label="success rate")
     plot.set_title(title, fontsize=9)
     FigureCanvasAgg(figure)
-    save_png(figure, path, dpi=110)
+    save_figure(figure, path, dpi=110)
 
 
 def _percent(share: float) -> str:

@@ -89,7 +89,7 @@ pub fn format_error(
 pub fn from_toml_error(source: &str, text: &str, err: &toml::de::Error) -> Error {
     let span = err.span();
     let offset = span.as_ref().map_or(0, |s| s.start);
-    let mut message = err.message().trim().to_string();
+    let mut message = in_plain_words(err.message().trim());
     let whole = span
         .as_ref()
         .is_none_or(|s| s.start == 0 && (s.end == 0 || s.end >= text.trim_end().len()));
@@ -104,6 +104,53 @@ pub fn from_toml_error(source: &str, text: &str, err: &toml::de::Error) -> Error
         ));
     }
     format_error(source, text, offset, Some("(top level)"), message)
+}
+
+/// The reader's names of Rust's number types, and what a world file's author calls them.
+const TYPE_WORDS: [(&str, &str); 12] = [
+    ("f64", "a number"),
+    ("f32", "a number"),
+    ("i64", "a whole number"),
+    ("i32", "a whole number"),
+    ("i16", "a whole number"),
+    ("i8", "a whole number"),
+    ("u64", "a whole number, 0 or more"),
+    ("u32", "a whole number, 0 or more"),
+    ("u16", "a whole number, 0 or more"),
+    ("u8", "a whole number, 0 or more"),
+    ("usize", "a whole number, 0 or more"),
+    ("isize", "a whole number"),
+];
+
+/// A TOML reader's message in the words of the package's others: a number type by what it
+/// takes ("expected f64" is "expected a number"), and "invalid type: X, expected Y" as
+/// "expected Y, found X", the order every message of mazesim has.
+fn in_plain_words(message: &str) -> String {
+    let mut text = message.to_string();
+    for (rust, words) in TYPE_WORDS {
+        let named = format!("expected {rust}");
+        let mut from = 0;
+        while let Some(found) = text[from..].find(&named) {
+            let start = from + found;
+            let end = start + named.len();
+            let boundary = text[end..]
+                .chars()
+                .next()
+                .is_none_or(|c| !c.is_alphanumeric() && c != '_');
+            if boundary {
+                text.replace_range(start..end, &format!("expected {words}"));
+            }
+            from = start + 1;
+        }
+    }
+    for opening in ["invalid type: ", "invalid value: "] {
+        if let Some(rest) = text.strip_prefix(opening) {
+            if let Some((found, expected)) = rest.rsplit_once(", expected ") {
+                return format!("expected {expected}, found {found}");
+            }
+        }
+    }
+    text
 }
 
 /// Refuses a world text of more tables than a world within the limits has
@@ -145,6 +192,35 @@ pub fn check_table_count(text: &str, source: &str) -> Result<(), Error> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_readers_type_names_are_said_in_words_expected_first() {
+        let cases = [
+            (
+                "invalid type: string \"0.25\", expected f64",
+                "expected a number, found string \"0.25\"",
+            ),
+            (
+                "invalid type: floating point `1.0`, expected i64",
+                "expected a whole number, found floating point `1.0`",
+            ),
+            (
+                "invalid value: integer `-1`, expected u32",
+                "expected a whole number, 0 or more, found integer `-1`",
+            ),
+            (
+                "invalid type: integer `5`, expected a string",
+                "expected a string, found integer `5`",
+            ),
+            (
+                "unknown field `f64x`, expected f64x",
+                "unknown field `f64x`, expected f64x",
+            ),
+        ];
+        for (reader, said) in cases {
+            assert_eq!(in_plain_words(reader), said);
+        }
+    }
 
     #[test]
     fn a_text_of_more_tables_than_a_world_may_have_is_refused_before_parsing() {
