@@ -34,11 +34,13 @@ from mazesim.webots.radio_devices import (
     E_PUCK_CHANNEL,
     Emitter,
     Receiver,
+    _float_field,
     emitter_from_fields,
     receiver_from_fields,
 )
 from mazesim.webots.robot_frames import Mount, robot_mount
 from mazesim.webots.sensors import (
+    DISTANCE_SENSOR_APERTURE,
     GPS,
     Accelerometer,
     Compass,
@@ -173,7 +175,12 @@ def extension_device(simulation: RobotSimulation, entry: Mapping[str, Any]) -> D
         "InertialUnit": lambda: InertialUnit(name, simulation, mount, None),
         "TouchSensor": lambda: TouchSensor(name, simulation),
         "DistanceSensor": lambda: RayDistanceSensor(
-            name, simulation, mount, table, str(fields.get("type", "generic"))
+            name,
+            simulation,
+            mount,
+            table,
+            str(fields.get("type", "generic")),
+            _float_field(fields, "aperture", DISTANCE_SENSOR_APERTURE),
         ),
         "LightSensor": lambda: (
             LightSensor(name, simulation, table, mount)

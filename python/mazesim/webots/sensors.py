@@ -433,6 +433,10 @@ class TouchSensor(_ScalarSensor):
         return []
 
 
+#: A DistanceSensor node's ``aperture`` (rad) when the world gives none (Webots' reference
+#: manual, DistanceSensor: ``aperture 1.5708``).
+DISTANCE_SENSOR_APERTURE = 1.5708
+
 #: A distance sensor whose x axis points more than this below the horizontal (rad, 45 degrees)
 #: reads the floor under it rather than the walls.
 DOWNWARD_PITCH = math.pi / 4
@@ -440,7 +444,7 @@ DOWNWARD_PITCH = math.pi / 4
 
 class RayDistanceSensor(DistanceSensor):
     """A distance sensor the world adds: one ray from its mount against the walls (a
-    :class:`DistanceSensor`, with the world's table and type)."""
+    :class:`DistanceSensor`, with the world's table, type and aperture)."""
 
     def __init__(
         self,
@@ -449,9 +453,11 @@ class RayDistanceSensor(DistanceSensor):
         mount: DeviceMount,
         table: Sequence[Sequence[float]] | None = None,
         sensor_type: str = "generic",
+        aperture: float = DISTANCE_SENSOR_APERTURE,
     ) -> None:
         _ScalarSensor.__init__(self, name, simulation)
         self._mount = mount
+        self._aperture = aperture
         self._table = LookupTable(DISTANCE_TABLE if not table else table)
         self._type = DISTANCE_SENSOR_TYPES.get(sensor_type, self.GENERIC)
         self._walls = WallsNow(simulation, sensed=self._type == self.INFRA_RED)
@@ -487,6 +493,11 @@ class RayDistanceSensor(DistanceSensor):
     def getType(self) -> int:
         """The sensor type from the world (``GENERIC`` by default)."""
         return self._type
+
+    def getAperture(self) -> float:
+        """The world's ``aperture`` of the sensor (rad), else the DistanceSensor node's default,
+        :data:`DISTANCE_SENSOR_APERTURE` (the reading is still one ray's)."""
+        return self._aperture
 
 
 def _product(first: Sequence[float], second: Sequence[float]) -> list[float]:
