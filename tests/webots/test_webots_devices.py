@@ -654,3 +654,22 @@ def test_sharps_infra_red_ranger_protos_are_the_distance_sensors_they_hold() -> 
     assert readings == pytest.approx([2.33, 1.25, 0.66], abs=0.03)
     far = robot.getDevice("Sharp's IR sensor GP2Y0A02YK0F")
     assert far.getLookupTable()[:3] == [0.15, 2.75, 0.015]
+
+
+def test_a_distance_sensor_the_world_adds_gives_its_aperture() -> None:
+    """A DistanceSensor the world mounts (not one of the E-puck's own) answers getAperture, as a
+    C controller's link asks of every distance sensor: the world's ``aperture``, else the
+    node's default."""
+    from mazesim.webots import import_wbt_text
+
+    text = (
+        "#VRML_SIM R2023b utf8\n"
+        "E-puck {\n  turretSlot [\n"
+        '    DistanceSensor { name "wide" }\n'
+        '    DistanceSensor { name "narrow" aperture 0.3 }\n'
+        "    E-puckDistanceSensor { }\n  ]\n}\n"
+    )
+    _, report = import_wbt_text(text)
+    robot = make_robot(report=report)
+    apertures = [robot.getDevice(name).getAperture() for name in ("wide", "narrow", "ds")]
+    assert apertures == pytest.approx([1.5708, 0.3, 0.1])
