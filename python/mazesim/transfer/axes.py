@@ -126,7 +126,7 @@ class Axis:
 #: Every axis of the study, in the order of the tables and pictures.
 
 
-def _named_level(axis: Axis, level: RegisteredName) -> str:
+def _named_level(axis: Axis, level: RegisteredName | float) -> str:
     """``level`` when it is one of the levels ``axis`` names; else the refusal of a name."""
     return _known_name(level, f"a level of axis {_shown(axis.name)}", axis.names)
 
