@@ -120,7 +120,10 @@ def test_ranges_and_a_draw_go_together(tmp_path: Path) -> None:
     ("arguments", "message"),
     [
         (["--randomise", "wheel_radius=0.1:1"], r"axis 'wheel_radius': expected a level in \[0.5"),
-        (["--randomise", "latency=0:3"], "a property of the robot profile to be one of .*found 'latency'"),
+        (
+            ["--randomise", "latency=0:3"],
+            "a property of the robot profile to be one of .*found 'latency'",
+        ),
         (["--randomise", "wheel_radius"], "expected a TOML file or axis=low:high"),
         (["--randomise", "missing.toml"], "cannot read the randomisation file"),
         (["--randomise", "slip=0:0.5", "--flat"], "--randomise trains hierarchical navigators"),
