@@ -436,3 +436,21 @@ def test_a_bound_method_and_a_valid_call_are_served_as_before() -> None:
     other.restore(core.Simulator.snapshot(simulator))
     assert other.pose == simulator.pose
     assert mazesim.World.builtin(name="arena").to_toml() == world.to_toml()
+
+
+def test_a_typed_dict_parameter_is_checked_as_a_mapping() -> None:
+    """``isinstance`` refuses a TypedDict; the check reads one as a mapping, so a wrong or a
+    missing settings argument is the check's refusal, not a TypeError of typing's."""
+    from mazesim._checks import checked
+    from mazesim.webots.recognition import RecognitionSettings
+
+    def takes(settings: RecognitionSettings, other: int = 0) -> int:
+        return int(settings["robot_line"]) + other
+
+    takes.__module__ = "mazesim.webots.recognition"
+    check = checked(takes)
+    with pytest.raises(mazesim.WrongTypeError, match="settings refused: expected a mapping"):
+        check(1.5)
+    with pytest.raises(mazesim.InvalidArgumentError, match="expected the argument 'settings'"):
+        check(other=1)
+    assert check({"robot_line": 2}, 1) == 3

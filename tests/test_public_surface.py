@@ -6,7 +6,8 @@ package and the command line, so a new one is covered without a new test.
 
 ``make test`` runs one hypothesis-drawn call per entry point of ``mazesim._core``, the ``mazesim``
 namespace and the command line; ``make fuzz`` (``MAZESIM_SURFACE=all``, ``MAZESIM_SURFACE_CALLS``)
-runs more calls over every module of the package.
+runs more calls over every module of the package; ``MAZESIM_SURFACE=mazesim.webots`` over the
+modules whose names start so.
 """
 
 from __future__ import annotations
@@ -19,6 +20,7 @@ from typing import Any
 from hypothesis import HealthCheck, Phase, given, settings
 from hypothesis import strategies as st
 
+import mazesim
 from mazesim._checks import is_public_module
 from surface.registry import (
     INSTANCES,
@@ -59,7 +61,10 @@ _MADE: dict[str, bool] = {}
 
 
 def _in_part(entry: EntryPoint) -> bool:
-    if PART != "all" and not entry.path.startswith(("cli:", "mazesim._core:")):
+    if PART not in ("all", "core"):  # a module's own, by its name (MAZESIM_SURFACE=mazesim.webots)
+        if not entry.path.split(":")[0].startswith(PART):
+            return False
+    elif PART != "all" and not entry.path.startswith(("cli:", "mazesim._core:")):
         if entry.path.split(":")[0] not in ("mazesim", "mazesim.errors"):
             return False
     owner = needs_instance(entry)
@@ -285,6 +290,19 @@ def test_every_checked_function_is_in_the_registry() -> None:
                     if checked and not method.startswith("_") and path not in paths:
                         missing.append(path)
     assert not missing, f"checked but never walked: {missing}"
+
+
+def test_only_the_one_check_marks_a_function_as_checked() -> None:
+    """A hot path leaves the surface's check through ``_checks.checks_own_arguments`` alone,
+    whose thin wrapper still turns a call of the wrong arity into a MazesimError: a marker of a
+    module's own (setting ``__mazesim_checked__`` by hand) would let that TypeError through."""
+    package = Path(mazesim.__file__).parent
+    marking = [
+        str(path.relative_to(package))
+        for path in package.rglob("*.py")
+        if path.name != "_checks.py" and "__mazesim_checked__ =" in path.read_text("utf-8")
+    ]
+    assert not marking, f"mark hot paths with mazesim._checks.checks_own_arguments: {marking}"
 
 
 def test_the_registry_finds_the_whole_surface() -> None:

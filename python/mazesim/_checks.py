@@ -190,6 +190,8 @@ def _refusal(value: Any, hint: Any) -> str | None:  # noqa: C901, PLR0911, PLR09
         )
     if origin is not None:
         return _container_refusal(value, hint, origin, args)
+    if typing.is_typeddict(hint):  # isinstance refuses a TypedDict: it is read as a mapping
+        return _class_refusal(value, abc.Mapping)
     if not isinstance(hint, type):
         return None  # a NewType, a ParamSpec...: not checked
     return _class_refusal(value, hint)
@@ -620,6 +622,8 @@ class _Parameters:
         axes): which argument took it, and the order the function takes them in; "" otherwise."""
         hint = self.by_name.get(missing)
         if not (isinstance(hint, type) and hint.__module__.startswith("mazesim")):
+            return ""
+        if typing.is_typeddict(hint):  # a TypedDict is any mapping: no value is told as one
             return ""
         for (name, _), value in zip(self.positional, args):  # noqa: B905 - extras: TypeError
             if isinstance(value, hint):

@@ -160,6 +160,10 @@ def test_the_per_pixel_accessors_refuse_a_pixel_outside_the_image() -> None:
     for bad in ((image, True, 0, 0), (image, width, 1.0, 0), ("image", width, 0, 0)):
         with pytest.raises(TypeError, match=r"Camera\.imageGetBlue: expected"):
             controller.Camera.imageGetBlue(*bad)
+    # A call of the wrong arity is the package's refusal too, not Python's bare TypeError.
+    for arguments in ((image, width, 0), (image, width, 0, 0, 0)):
+        with pytest.raises(InvalidArgumentError, match=r"Camera\.imageGetGray"):
+            controller.Camera.imageGetGray(*arguments)
 
 
 def test_a_camera_slower_than_the_step_is_black_until_its_first_image() -> None:
@@ -673,3 +677,16 @@ def test_a_distance_sensor_the_world_adds_gives_its_aperture() -> None:
     robot = make_robot(report=report)
     apertures = [robot.getDevice(name).getAperture() for name in ("wide", "narrow", "ds")]
     assert apertures == pytest.approx([1.5708, 0.3, 0.1])
+
+
+def test_webots_errors_print_at_most_a_message_long(capsys: pytest.CaptureFixture[str]) -> None:
+    """Webots' error for a field or file name a controller passed quotes the name; one of a
+    hundred thousand characters prints as a line of at most a message's length, its start and
+    its end kept."""
+    from mazesim.errors import MOST_MESSAGE
+    from mazesim.webots.devices import _print_error
+
+    _print_error("Error: field '" + "x" * 100_000 + "' does not exist in node 'E-puck'.")
+    printed = capsys.readouterr().err.rstrip("\n")
+    assert len(printed) < MOST_MESSAGE + 100  # with the note of what was left out
+    assert printed.startswith("Error: field 'xxx") and printed.endswith("in node 'E-puck'.")

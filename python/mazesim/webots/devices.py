@@ -19,7 +19,7 @@ from typing import TYPE_CHECKING, Any, ClassVar
 import numpy as np
 
 from mazesim._toml import load_toml
-from mazesim.errors import InvalidArgumentError, _a_type
+from mazesim.errors import MOST_MESSAGE, InvalidArgumentError, _a_type, _shortened
 from mazesim.webots.last_commands import WheelCommand, motor_speed
 from mazesim.webots.node_types import node_type
 
@@ -45,7 +45,10 @@ PROXIMITY_TABLE = (
 
 
 def _print_error(message: str) -> None:
-    print(message, file=sys.stderr)
+    """Prints Webots' error ``message`` as its library does, on stderr; at most
+    :data:`~mazesim.errors.MOST_MESSAGE` characters of it, as mazesim's raised messages, so that a
+    name of a million characters a controller passed shows as a line."""
+    print(_shortened(message, MOST_MESSAGE), file=sys.stderr)
 
 
 #: The longest sampling period Webots takes: its ``enable`` functions take a C ``int`` of ms.
