@@ -17,7 +17,7 @@ from typing import Any
 import numpy as np
 import pytest
 
-from mazesim.errors import PolicyFormatError
+from mazesim.errors import PolicyFormatError, _command_line
 from mazesim.learn.checkpoint import (
     CHECKPOINT_FILE,
     CHECKPOINT_FORMAT,
@@ -207,9 +207,10 @@ def test_resuming_where_no_run_wrote_a_checkpoint_says_to_start_without_resume(
         RunFolder(tmp_path / "never-trained", resume=True).start({"seed": 0})
     message = str(refused.value)
     assert message.startswith(f"{tmp_path / 'never-trained' / CHECKPOINT_FILE}: no checkpoint")
-    assert message.endswith(
-        "start a fresh run there without resume (mazesim train: without --resume)"
-    )
+    assert message.endswith("start a fresh run there without resume")
+    with _command_line(), pytest.raises(PolicyFormatError) as refused:
+        RunFolder(tmp_path / "never-trained", resume=True).start({"seed": 0})
+    assert str(refused.value).endswith("start a fresh run there without --resume")
     assert not (tmp_path / "never-trained").exists()
 
 
