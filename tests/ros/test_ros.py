@@ -23,7 +23,13 @@ import pytest
 import mazesim
 from mazesim.actions import wheel_speeds
 from mazesim.controllers import AvoidCollision
-from mazesim.errors import InvalidActionError, InvalidArgumentError, MazesimError, MazesimIOError
+from mazesim.errors import (
+    InvalidActionError,
+    InvalidArgumentError,
+    MazesimError,
+    MazesimIOError,
+    UnknownNameError,
+)
 from mazesim.learn import load_policy
 from mazesim.replay.ros_bag import read_topics
 from mazesim.ros import topics
@@ -111,7 +117,10 @@ def test_bridge_settings_options_win_over_parameters() -> None:
     ],
 )
 def test_bad_bridge_parameter_is_named(name: str, value: Any) -> None:
-    with pytest.raises(InvalidArgumentError, match=f"parameter {name}"):
+    # A mode no bridge has is the one unknown-name refusal; a bad value of a known kind, the
+    # argument refusal.
+    refused = UnknownNameError if name == "mode" else InvalidArgumentError
+    with pytest.raises(refused, match=f"parameter {name}"):
         resolve_settings(_Parameters(**{name: value}), {})
 
 
