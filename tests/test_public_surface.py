@@ -49,8 +49,6 @@ SEED = os.environ.get("MAZESIM_SURFACE_SEED", "")
 def _makeable(owner: str) -> bool:
     import tempfile
 
-    import mazesim
-
     if owner not in _MADE:
         with tempfile.TemporaryDirectory() as tmp:
             _MADE[owner] = can_make(owner, mazesim.World.builtin("seed-maze"), Path(tmp))
@@ -245,7 +243,6 @@ def test_every_method_has_a_way_to_make_its_instance() -> None:
 
 def _modules_on_disk() -> list[str]:
     """Every public module of the package, found from its files (not through the registry)."""
-    import mazesim
 
     root = Path(mazesim.__file__).resolve().parent
     names = []
@@ -290,19 +287,6 @@ def test_every_checked_function_is_in_the_registry() -> None:
                     if checked and not method.startswith("_") and path not in paths:
                         missing.append(path)
     assert not missing, f"checked but never walked: {missing}"
-
-
-def test_only_the_one_check_marks_a_function_as_checked() -> None:
-    """A hot path leaves the surface's check through ``_checks.checks_own_arguments`` alone,
-    whose thin wrapper still turns a call of the wrong arity into a MazesimError: a marker of a
-    module's own (setting ``__mazesim_checked__`` by hand) would let that TypeError through."""
-    package = Path(mazesim.__file__).parent
-    marking = [
-        str(path.relative_to(package))
-        for path in package.rglob("*.py")
-        if path.name != "_checks.py" and "__mazesim_checked__ =" in path.read_text("utf-8")
-    ]
-    assert not marking, f"mark hot paths with mazesim._checks.checks_own_arguments: {marking}"
 
 
 def test_the_registry_finds_the_whole_surface() -> None:
@@ -409,8 +393,6 @@ def _name_checks() -> list[tuple[str, str, str]]:
     """Each parameter of a function of the package that the function checks as a registered
     name (its value passed to ``mazesim.errors._known_name``): (file, parameter, annotation)."""
     import ast
-
-    import mazesim
 
     root = Path(mazesim.__file__).parent
     found = []
