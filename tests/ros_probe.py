@@ -21,6 +21,9 @@ environment) and read its standard output.
     ros_probe.py drive-sleeping PERIOD COMMANDS_JSON
                                        the same with rospy.sleep(PERIOD) after each command: its
                                        times count from whenever the sleep starts
+    ros_probe.py drive-letting-a-tick-go PERIOD COMMANDS_JSON INDEX
+                                       as drive-at-rate, the tick before command INDEX let go
+                                       without a command
     ros_probe.py drive-on-timer PERIOD COMMANDS_JSON STATES
                                        a rospy.Timer(rospy.Duration(PERIOD)) made right after
                                        init_node, before any /clock (its ticks at the multiples
@@ -295,12 +298,13 @@ def standard(twists: list[list[float]]) -> dict[str, Any]:
 
 
 def drive_at_rate(
-    period: float, commands: list[dict[str, Any]], sleeping: bool = False
+    period: float, commands: list[dict[str, Any]], sleeping: bool = False, let_go: int = -1
 ) -> dict[str, Any]:
     """Publishes each command, then sleeps on a ``rospy.Rate`` of simulated time, as a
     controller commanding at a rate does (``sleeping``: ``rospy.sleep(period)``, counted from
-    whenever it starts); returns once the last command's hold is over (the clock at the rate's
-    next tick, every state of it received)."""
+    whenever it starts; ``let_go``: the tick before that command goes by without one, as a node
+    that finds a message of the tick not come yet skips it); returns once the last command's
+    hold is over (the clock at the rate's next tick, every state of it received)."""
     if rospy.rostime.is_wallclock():
         raise SystemExit("expected /use_sim_time: rospy.Rate would not count simulated time")
     motor = publisher("motor", Float64MultiArray)
@@ -313,7 +317,9 @@ def drive_at_rate(
             raise SystemExit("no /clock came")
         time.sleep(0.01)
     rate = rospy.Rate(1.0 / period)
-    for command in commands:
+    for index, command in enumerate(commands):
+        if index == let_go:
+            rate.sleep()
         motor.publish(Float64MultiArray(data=command["data"]))
         if sleeping:
             rospy.sleep(period)
@@ -436,10 +442,13 @@ def main() -> int:
                     0.5 if mode == "drive-after-sleep" else 0.0,
                     10 if mode == "drive-skipping" else 0,
                 )
-        elif mode in ("drive-at-rate", "drive-sleeping"):
+        elif mode in ("drive-at-rate", "drive-sleeping", "drive-letting-a-tick-go"):
             with open(sys.argv[3]) as handle:
                 result = drive_at_rate(
-                    float(sys.argv[2]), json.load(handle), mode == "drive-sleeping"
+                    float(sys.argv[2]),
+                    json.load(handle),
+                    mode == "drive-sleeping",
+                    int(sys.argv[4]) if mode == "drive-letting-a-tick-go" else -1,
                 )
         elif mode == "drive-on-timer":
             with open(sys.argv[3]) as handle:

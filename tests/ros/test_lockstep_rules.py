@@ -8,7 +8,13 @@ import math
 import pytest
 
 from mazesim.errors import InvalidArgumentError
-from mazesim.ros.lockstep import RESEND_S, CommandDeadline, TimerHold, UnansweredState
+from mazesim.ros.lockstep import (
+    RESEND_S,
+    SKIPPED_TICK_S,
+    CommandDeadline,
+    TimerHold,
+    UnansweredState,
+)
 
 STEP_NS = 32_000_000
 
@@ -145,3 +151,33 @@ def test_no_command_deadline_never_steps() -> None:
 def test_a_command_deadline_that_is_no_time_is_refused(seconds: float) -> None:
     with pytest.raises(InvalidArgumentError, match="expected a command deadline in seconds"):
         CommandDeadline(seconds, 0.032)
+
+
+def test_a_tick_let_go_holds_the_last_command_on_to_the_next_tick() -> None:
+    # A node pairing each scan with the /tf of its stamp at each tick of a 0.2 s timer found, at
+    # one tick, the scan come and its transform not yet, and let the tick go; the clock waited
+    # for a command that never came (3 runs of 5 stalled). Once SKIPPED_TICK_S pass with no
+    # command after a hold ended, the tick counts as let go and the command holds on.
+    hold = TimerHold(0.2, STEP_NS / 1e9, origin_ns=1)
+    assert hold.wait(5.0) == math.inf and not hold.let_go(1e9)  # no hold ended yet
+    hold.start(1)
+    hold.ended(10.0)  # at the state stamped 0.224 s
+    assert hold.wait(10.25) == pytest.approx(SKIPPED_TICK_S - 0.25)
+    assert not hold.let_go(10.0 + SKIPPED_TICK_S - 1e-3)
+    assert hold.let_go(10.0 + SKIPPED_TICK_S)
+    notice = hold.holding_on()
+    assert notice is not None and "--command-period" in notice and hold.skipped == 1
+    assert not hold.let_go(1e9)  # nothing ended since: one hold on per tick let go
+    hold.start(224_000_000)  # held on from the tick's state to the next tick, 0.4 s + 1 ns
+    assert hold.holds(384_000_000) and not hold.holds(416_000_000)
+    hold.ended(12.0)
+    assert hold.let_go(13.0) and hold.holding_on() is None and hold.skipped == 2  # said once
+    hold.start(416_000_000)  # a command came: no tick waits until its hold ends
+    assert hold.wait(20.0) == math.inf
+
+
+def test_without_a_period_no_tick_is_ever_let_go() -> None:
+    hold = TimerHold(0.0, STEP_NS / 1e9)
+    hold.start(1)
+    hold.ended(1.0)
+    assert not hold.let_go(1e9) and hold.wait(1.0) == math.inf

@@ -826,6 +826,27 @@ def test_a_controller_at_a_rospy_rate_drives_in_lockstep_with_command_period(
 
 
 @needs_ros
+def test_a_tick_let_go_holds_the_last_command_on_to_the_next_tick(
+    master: LocalMaster, tmp_path: Path
+) -> None:
+    # A node pairing each scan with the /tf of its stamp at each tick of a rospy.Timer (a SLAM
+    # front-end) found, at a tick, the scan come and its transform not yet, the two arriving on
+    # connections of their own: it let the tick go, and the clock waited for a command (3 runs
+    # of 5 stalled with --command-period). The bridge now holds the last command on to the next
+    # tick once SKIPPED_TICK_S pass without one: the in-process run with it held over both.
+    commands, path = commands_on_sim_time(master, tmp_path, 5, "--command-period", "0.1")
+    commands = commands[:8]
+    path.write_text(json.dumps(commands))
+    seen = run_probe(master, "drive-letting-a-tick-go", "0.1", str(path), "3")
+    ticks = rate_holds(0.1, len(commands) + 1)
+    holds = [*ticks[:2], ticks[2] + ticks[3], *ticks[4:]]  # the third command's two periods
+    held = [command for command, steps in zip(commands, holds) for _ in range(steps)]
+    expected = replay("e-puck", 5, held)
+    assert seen["data"]["pose"] == expected["pose"]  # bit for bit
+    assert seen["data"]["sensors"] == expected["sensors"]
+
+
+@needs_ros
 def test_a_controller_on_a_rospy_timer_drives_in_lockstep_with_command_period(
     master: LocalMaster, tmp_path: Path
 ) -> None:

@@ -434,6 +434,7 @@ class Bridge:
             if kind == RESET_SIMULATION:
                 self.idle_steps = 0
             self.wheel_speeds = self.held.latest = (0.0, 0.0)
+            self.hold.start(self._stamp())  # no tick waits for a command across a reset
             self.standard.previous = None
             self.standard.previous_time = self.simulator.time
             self.ros.rospy.loginfo(
@@ -543,16 +544,42 @@ class Bridge:
             # One step, and with command_period the further steps the command holds until the
             # clock reaches the controller's next tick (TimerHold, the rule of both bridges).
             self.hold.start(self._stamp())
-            while True:
-                self.simulator.step(left, right)
-                self.publish_state()
-                if self._finished():
-                    self.stop.set()
-                    break
-                if not self.hold.holds(self._stamp()):
-                    break
-            self.unanswered.went_out(time.monotonic())
+            self._step_held(left, right)
             self.deadline.commanded(time.monotonic())
+
+    def _step_held(self, left: float, right: float) -> None:
+        """One step, and with ``command_period`` the further steps the command holds until the
+        clock reaches the controller's next tick; then waits for its next command there
+        (:class:`~mazesim.ros.lockstep.TimerHold`). Call with the lock held."""
+        while True:
+            self.simulator.step(left, right)
+            self.publish_state()
+            if self._finished():
+                self.stop.set()
+                break
+            if not self.hold.holds(self._stamp()):
+                self.hold.ended(time.monotonic())
+                break
+        self.unanswered.went_out(time.monotonic())
+
+    def step_on_skipped_tick(self) -> float:
+        """Lockstep with ``command_period``, once a command has been stepped: when no command
+        has come ``SKIPPED_TICK_S`` after a hold ended at the controller's tick, the controller
+        let that tick go (a node pairing each ``scan`` with the ``/tf`` of its stamp found the
+        transform not come yet, the two arriving on connections of their own); holds the last
+        command on to its next tick, as a simulator whose clock runs on would, so that its timer
+        fires again (:class:`~mazesim.ros.lockstep.TimerHold`). Returns the seconds until such a
+        tick is due (``math.inf``: none)."""
+        with self._lock:
+            now = time.monotonic()
+            if self.stop.is_set() or not self.hold.let_go(now):
+                return self.hold.wait(now)
+            notice = self.hold.holding_on()
+            if notice is not None:
+                self.ros.rospy.logwarn(notice)
+            self.hold.start(self._stamp())
+            self._step_held(*self.wheel_speeds)
+            return self.hold.wait(time.monotonic())
 
     def step_on_deadline(self) -> float:
         """Lockstep with ``command_deadline``, once a command has been stepped: when none has
@@ -643,7 +670,9 @@ class Bridge:
                     self.late.hand_over(state, self.sensing)
                 self._resend_unanswered()
                 self.answer_goal()
-                wait = min(self.tick_idle_clock(), self.step_on_deadline())
+                wait = min(
+                    self.tick_idle_clock(), self.step_on_deadline(), self.step_on_skipped_tick()
+                )
             return
         period = self.simulator.control_step_ms / 1000.0 / self.settings.speed
         next_step = time.monotonic()
@@ -755,7 +784,7 @@ def run_bridge(
             "mazesim bridge stopped: %d steps (%.2f s simulated) in %.2f s of stepping, "
             "%.0f steps/s; %s; %d bad messages ignored (their steps kept the wheel speeds); "
             "/clock ran %d steps on its own before the first command; %d steps without a "
-            "command (command_deadline)",
+            "command (command_deadline); %d ticks let go without a command (command_period)",
             steps,
             simulated,
             elapsed,
@@ -764,6 +793,7 @@ def run_bridge(
             bridge.held.refused,
             bridge.idle_steps,
             bridge.deadline.steps,
+            bridge.hold.skipped,
         )
         rospy.signal_shutdown("mazesim bridge stopped")
     return 0

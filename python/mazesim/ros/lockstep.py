@@ -24,7 +24,15 @@ timers on simulated time, the clock still at zero) fires at the first ``/clock``
 multiple of ``P``: exactly the state at which the hold ends, so the node answers the state the
 bridge waits on. How many steps each command holds is a function of the stamps alone, so the run
 is deterministic and equal, field for field, to the in-process run that holds each command over
-those steps.
+those steps. A node can let a tick go without a command: one that pairs the ``/scan`` it has with
+the ``/tf`` of its stamp at each tick finds, now and then, the scan of the tick's state come and
+its transform not yet (each topic arrives on a connection of its own, served by a thread of its
+own, so one state's messages reach the node in any order), and skips that tick; on a simulator
+whose clock runs on it pairs at the next one, but in lockstep the clock waited for a command that
+never came. When no command has come ``SKIPPED_TICK_S`` after a hold ended at a tick, the bridge
+takes the tick as let go and holds the last command on to the next tick, as that simulator would
+(a node that commands at each tick never sees it): the run is the in-process run with that
+command held over both periods.
 
 A node that waits for simulated time at moments the bridge cannot tell from the wire (a timer
 counted from the node's first ``/clock``, a ``sleep`` of simulated time after each command, a
@@ -49,6 +57,7 @@ __all__ = [
     "CommandDeadline",
     "IDLE_CLOCK_AFTER_S",
     "RESEND_S",
+    "SKIPPED_TICK_S",
     "TimerHold",
     "UnansweredState",
     "stamp_nanoseconds",
@@ -60,6 +69,11 @@ RESEND_S = 5.0
 #: Lockstep, before the first command: seconds after the reset state went out again unanswered
 #: before ``/clock`` runs on its own.
 IDLE_CLOCK_AFTER_S = 1.0
+#: Lockstep with a command period: wall-clock seconds after a hold ended at the node's tick with
+#: no command come, before the bridge takes that tick as let go and holds the last command on
+#: (twice the wait before /clock runs on its own: a node slowed down by a loaded machine answers
+#: within it).
+SKIPPED_TICK_S = 2.0
 
 
 def stamp_nanoseconds(seconds: float) -> int:
@@ -162,6 +176,10 @@ class TimerHold:
         self.period_ns = int(period_s * 1e9)
         self.origin_ns = origin_ns
         self._until_ns = 0
+        #: When (``time.monotonic()``) the last hold ended at a tick with no command since.
+        self._ended_at = math.inf
+        #: Ticks the node let go without a command, each held on to the next tick.
+        self.skipped = 0
 
     @property
     def active(self) -> bool:
@@ -175,10 +193,41 @@ class TimerHold:
         if self.active:
             ticks = (stamp_ns - self.origin_ns) // self.period_ns + 1
             self._until_ns = self.origin_ns + ticks * self.period_ns
+            self._ended_at = math.inf
 
     def holds(self, stamp_ns: int) -> bool:
         """Whether the command holds for another step after the state stamped ``stamp_ns``."""
         return self.active and stamp_ns < self._until_ns
+
+    def ended(self, now: float) -> None:
+        """A command's hold ended at the node's tick at ``now`` (wall clock): its next command
+        is due."""
+        if self.active:
+            self._ended_at = now
+
+    def wait(self, now: float) -> float:
+        """Seconds until the tick the last hold ended at counts as let go (``math.inf``: no
+        hold waits for a command)."""
+        return max(self._ended_at + SKIPPED_TICK_S - now, 0.0)
+
+    def let_go(self, now: float) -> bool:
+        """Whether the node let the tick the last hold ended at go: no command has come
+        ``SKIPPED_TICK_S`` after."""
+        return now >= self._ended_at + SKIPPED_TICK_S
+
+    def holding_on(self) -> str | None:
+        """Counts a tick let go, whose command holds on to the next tick (the bridge then calls
+        :meth:`start`); says what to say the first time (``None`` afterwards)."""
+        self.skipped += 1
+        self._ended_at = math.inf
+        if self.skipped > 1:
+            return None
+        return (
+            f"lockstep: no command {SKIPPED_TICK_S:g} s after the state at the node's tick; "
+            "holding the last command on to its next tick, as a simulator whose clock runs on "
+            "would (--command-period: a node that skips a tick, e.g. finding one of the tick's "
+            "messages not come yet, commands at the next)"
+        )
 
 
 class CommandDeadline:
