@@ -117,6 +117,13 @@ def main() -> int:
         "create_timer does with use_sim_time (ticks at each multiple of the period, missed ones "
         "skipped), instead of answering each state",
     )
+    parser.add_argument(
+        "--let-go-tick",
+        type=int,
+        default=-1,
+        help="with --timer-period: let this tick (from 0) go without a command, as a node that "
+        "finds a message of the tick not come yet skips it; the last command holds on",
+    )
     args = parser.parse_args()
     global WAIT_S
     WAIT_S = args.wait
@@ -383,11 +390,15 @@ def main() -> int:
         multiples of the period from time 0, a tick fires at the first clock at or after it,
         missed ones skipped), the wheels kept between commands; checks every state."""
         period_ns = int(period_s * 1e9)
-        fire_at, sent, kept = period_ns, 0, (0.0, 0.0)
+        fire_at, sent, kept, ticks = period_ns, 0, (0.0, 0.0), 0
         plan = commands(args.steps, args.seed)
         while simulator.steps < args.steps:
             now = stamp_nanoseconds(simulator.time)
-            if now >= fire_at:
+            if now >= fire_at and ticks == args.let_go_tick:
+                ticks += 1
+                fire_at = (now // period_ns + 1) * period_ns
+            elif now >= fire_at:
+                ticks += 1
                 linear, angular = plan[sent]
                 sent += 1
                 cmd_vel.write(

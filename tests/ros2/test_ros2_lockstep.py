@@ -422,6 +422,22 @@ def test_a_node_on_a_timer_of_simulated_time_drives_in_lockstep_with_its_period(
     assert "publishing" not in result.stderr  # nothing went out twice
 
 
+def test_a_tick_let_go_holds_the_last_command_on_to_the_next_tick() -> None:
+    # A node on a timer that lets a tick go without a command (it pairs each /scan with the
+    # /tf of its stamp and found one not come yet) waited for its next tick while the bridge
+    # waited for its command. Once SKIPPED_TICK_S pass without one after a hold ended, the
+    # bridge holds the last command on to the next tick: the driver, keeping its command over
+    # that tick as the node does, finds every field of every step equal to the in-process run.
+    result = run_in_namespace(
+        [_bridge("humble", 30, "--command-period", "0.1")],
+        _driver("humble", 30, "--timer-period", "0.1", "--let-go-tick", "3", "--wait", "60"),
+        timeout=150,
+    )
+    assert result.returncode == 0, result.stderr
+    assert "30 steps, every field equal" in result.stdout
+    assert "1 ticks let go without a command (--command-period)" in result.stderr
+
+
 def test_a_node_timing_itself_from_its_first_clock_drives_with_a_command_deadline() -> None:
     # A node that commands every 0.1 s of simulated time counted from the first /clock it reads
     # (not from the multiples of 0.1 s, as rcl's timers, so --command-period cannot foresee its

@@ -570,7 +570,26 @@ class Ros2Bridge:
         self.step_robots()
         while self.hold.holds(self.stamp()) and not self.stop.is_set():
             self.step_robots()
+        self.hold.ended(time.monotonic())
         self.deadline.commanded(time.monotonic())
+
+    def _step_on_skipped_tick(self) -> None:
+        """Lockstep with ``--command-period``, once a command has been stepped: when no command
+        has come ``SKIPPED_TICK_S`` after a hold ended at the node's tick, the node let that tick
+        go (it found a message of the tick not come yet); every robot's last command holds on to
+        the next tick (a robot whose command waits takes it), as a simulator whose clock runs on
+        would, so that the node's timer fires again (:class:`~mazesim.ros.lockstep.TimerHold`,
+        the rule of both bridges)."""
+        if self.stop.is_set() or not self.hold.let_go(time.monotonic()):
+            return
+        for robot in self.robots:
+            if robot.pending:
+                robot.wheel_speeds = robot.pending.popleft()
+        notice = self.hold.holding_on()
+        if notice is not None:
+            self._say(notice)
+        self.hold.start(self.stamp())
+        self._step_held()
 
     def _step_on_deadline(self) -> None:
         """Lockstep with ``--command-deadline``, once a command has been stepped: when none
@@ -601,6 +620,7 @@ class Ros2Bridge:
                 from_the_start = kind == RESET_SIMULATION
                 if from_the_start:
                     self.idle_steps = 0
+                self.hold.start(self.stamp())  # no tick waits for a command across a reset
                 for robot in self.robots:
                     robot.pending.clear()
                     robot.wheel_speeds = robot.held.latest = (0.0, 0.0)
@@ -644,12 +664,18 @@ class Ros2Bridge:
                         self.step_robots()
             while not self.stop.is_set():
                 now = time.monotonic()
-                wait = min(0.1, max(self._idle_tick_at - now, 0.0), self.deadline.wait(now))
+                wait = min(
+                    0.1,
+                    max(self._idle_tick_at - now, 0.0),
+                    self.deadline.wait(now),
+                    self.hold.wait(now),
+                )
                 self._waitset.wait(int(wait * 1e9))
                 if time.monotonic() >= self._first_rest_at:
                     self._finish_first_state()
                 self._step_pending()
                 self._step_on_deadline()
+                self._step_on_skipped_tick()
                 self._serve_resets()
                 self.parameters.serve()
                 self._check_readers()
@@ -896,10 +922,12 @@ def run_bridge(settings: BridgeSettings) -> int:
     )
     unanswered = bridge.deadline.steps
     held = f", {unanswered} steps without a command (--command-deadline)" if unanswered else ""
+    skipped = bridge.hold.skipped
+    let_go = f", {skipped} ticks let go without a command (--command-period)" if skipped else ""
     print(
         f"mazesim ros2 bridge: stopped after {simulator.steps} steps "
         f"({simulator.time:.3f} s simulated, {time.monotonic() - started:.1f} s wall clock), "
-        f"{goal}{idle}{held}",
+        f"{goal}{idle}{held}{let_go}",
         file=sys.stderr,
         flush=True,
     )
