@@ -93,6 +93,7 @@ PAGE_CONSTANTS: dict[str, dict[str, str]] = {
         "1 s": "the lockstep bridge's wait after that before its clock runs on its own",
         "0.5 s": "the simulated sleep of the test of a controller that sleeps before commanding",
         "0.8 s": "the eighth tick of a 0.1 s rospy.Rate, where --command-period's hold is 4 steps",
+        "2 s": "the lockstep bridge's wait before it holds a command on over a tick let go",
     },
     "ros2.md": {
         "0.3 %": "the noise column of the E-puck PROTO's gyro and accelerometer tables",
@@ -102,6 +103,7 @@ PAGE_CONSTANTS: dict[str, dict[str, str]] = {
         "6.4 s": "the argument of the page's run_until example",
         "0.1 s": "the period of the tests' and stand-ins' nodes on a timer of simulated time",
         "0.25 s": "the lockstep bridge's wait between the first state's motion and its sensors",
+        "2 s": "the lockstep bridge's wait before it holds a command on over a tick let go",
     },
     "webots.md": {
         "1 %": "the LightSensor PROTO table's noise (Webots' source)",
