@@ -3,6 +3,8 @@ and the env's next episodes then draw mazes of the new size (episodes under way 
 
 from __future__ import annotations
 
+import re
+
 import gymnasium
 import numpy as np
 import pytest
@@ -122,3 +124,59 @@ def test_the_wrapper_sets_the_size_of_every_single_env_of_a_sync_vector_env() ->
         maze = env.unwrapped.world.cell_maze()
         assert (int(maze["cols"]), int(maze["rows"])) == (3, 4)
     wrapped.close()
+
+
+GOAL_TASK = "mazesim/UnseenMazeGoal-v0"
+
+
+@pytest.mark.parametrize("mode", ["vector_entry_point", "sync"])
+def test_a_goal_task_follows_the_curriculum_inside_its_observation_space(mode: str) -> None:
+    envs = gymnasium.make_vec(
+        GOAL_TASK, num_envs=3, vectorization_mode=mode, maze_size=(5, 5), max_episode_steps=20
+    )
+    curriculum = MazeSizeCurriculum(((3, 3), (4, 4), (5, 5)), promote_at=1.0, window=1)
+    wrapped = MazeSizeCurriculumWrapper(envs, curriculum)
+    observations, _ = wrapped.reset(seed=0)
+    wrapped.action_space.seed(0)
+    sides = set()
+    for stage in range(3):
+        for _ in range(41):  # two episodes of 20 steps each, the next-step resets included
+            observations, *_ = wrapped.step(wrapped.action_space.sample())
+            assert envs.observation_space.contains(observations)
+            # Every desired goal lies in the current mazes: within 3 x 3 cells of 0.25 m at first.
+            sides.add(float(observations["desired_goal"].max()) < 0.25 * (3 + stage))
+        if stage < 2:
+            assert curriculum.record([True], [True])
+            wrapped._apply()  # as the wrapper does when a stage ends
+    assert sides == {True}
+    single = gymnasium.make(GOAL_TASK, maze_size=(5, 5))
+    MazeSizeCurriculum(((3, 3),)).apply(single)
+    single.reset(seed=0)
+    assert single.unwrapped.maze.world.cell_maze()["rows"] == 3
+    wrapped.close()
+
+
+@pytest.mark.parametrize(
+    ("env_id", "options", "size"),
+    [
+        (GOAL_TASK, {}, (7, 7)),  # achieved_goal and desired_goal in metres
+        ("mazesim/EPuckMaze-v0", {"world": "random", "include_pose": True}, (9, 9)),
+    ],
+)
+def test_apply_refuses_stages_the_observation_space_does_not_hold_before_any_runs(
+    env_id: str, options: dict[str, object], size: tuple[int, int]
+) -> None:
+    envs = gymnasium.make_vec(env_id, num_envs=2, **options)
+    curriculum = MazeSizeCurriculum(((3, 3), size))
+    with pytest.raises(
+        InvalidArgumentError, match=re.escape(f"make the env with maze_size={size}")
+    ):
+        MazeSizeCurriculumWrapper(envs, curriculum)  # at the first stage already
+    larger = gymnasium.make_vec(env_id, num_envs=2, maze_size=size, **options)
+    MazeSizeCurriculumWrapper(larger, curriculum)  # made for the largest mazes: accepted
+    # Observations without positions in metres hold every size.
+    for plain in (
+        gymnasium.make_vec("mazesim/EPuckMaze-v0", num_envs=2, world="random"),
+        gymnasium.make_vec(TASK, num_envs=2, include_pose=True),  # x and y are 0 to 1
+    ):
+        MazeSizeCurriculumWrapper(plain, MazeSizeCurriculum(((3, 3), (9, 9))))

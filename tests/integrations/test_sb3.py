@@ -309,3 +309,17 @@ def test_sb3_trains_through_a_curriculum_wrapper_of_the_native_vector_env() -> N
     # The steps went through the wrapper: it counted the episodes that ended (at 20 steps).
     assert curriculum.episodes[0] >= 4  # 32 steps of each of the 4 envs
     assert native.unwrapped.options.maze_size == (3, 3)
+
+
+@pytest.mark.parametrize("env_id", ["mazesim/MazeFixed-v1", "mazesim/EPuckGoal-v0"])
+def test_video_recorder_plays_the_adapters_videos_at_dummy_vec_envs_frame_rate(
+    env_id: str, tmp_path: Any
+) -> None:
+    from stable_baselines3.common.vec_env import VecVideoRecorder
+
+    def frame_rate(venv: VecEnv) -> float:
+        return VecVideoRecorder(venv, str(tmp_path), lambda step: False).frames_per_sec
+
+    fast = make_vec_env(env_id, n_envs=2, render_mode="rgb_array", monitor=False)
+    reference = DummyVecEnv([lambda: gymnasium.make(env_id, render_mode="rgb_array")] * 2)
+    assert frame_rate(fast) == frame_rate(reference) == 1000 / 128  # the tasks' 128 ms step

@@ -7,7 +7,12 @@ reaching ``promote_at``. It counts the episodes it is told of (:meth:`MazeSizeCu
 and sets the size of the mazes that the env's next episodes draw
 (:meth:`MazeSizeCurriculum.apply`): an episode under way keeps its maze, and the observation's
 shape does not change with the size. It works with any env of a task made with ``world="random"``
-(a single :class:`~mazesim.envs.EPuckMazeEnv` or the native vector env), under any wrapper.
+(a single :class:`~mazesim.envs.EPuckMazeEnv` or the native vector env, and the goal-conditioned
+tasks' :class:`~mazesim.envs.goal.MazeGoalEnv` and its vector env), under any wrapper. An
+observation that holds positions in metres (the goal tasks' ``achieved_goal`` and
+``desired_goal``, the raw readings' pose with ``include_pose=True``) has a space made for the
+mazes of the env's ``maze_size``: :meth:`MazeSizeCurriculum.apply` refuses, before any stage
+runs, a curriculum with a stage of larger mazes, and says to make the env with its largest size.
 
 :class:`MazeSizeCurriculumWrapper` does both for gymnasium's vector API: it records the episodes
 that end at each step (``info["is_success"]``) and applies the stage::
@@ -34,8 +39,9 @@ import gymnasium
 import numpy as np
 import numpy.typing as npt
 
+from mazesim.envs.goal import MazeGoalEnv, MazeGoalVectorEnv
 from mazesim.envs.maze_env import EPuckMazeEnv
-from mazesim.envs.options import MAX_ENV_CELLS
+from mazesim.envs.options import MAX_ENV_CELLS, EnvOptions
 from mazesim.envs.vector import EPuckMazeVectorEnv
 from mazesim.errors import InvalidArgumentError, WrongTypeError, _a_type, _shown
 
@@ -121,13 +127,15 @@ class MazeSizeCurriculum:
         return False
 
     def apply(self, env: Any) -> None:
-        """Makes the next episodes of ``env`` (a maze env or the native vector env, wrapped or
-        not, of a task with ``world="random"``) draw mazes of the current size."""
-        target = getattr(env, "unwrapped", env)
-        if not isinstance(target, (EPuckMazeEnv, EPuckMazeVectorEnv)):
-            raise WrongTypeError(
-                f"expected a mazesim maze env or its native vector env, found {_a_type(target)}"
-            )
+        """Makes the next episodes of ``env`` (a maze env, a goal env or their native vector
+        envs, wrapped or not, of a task with ``world="random"``) draw mazes of the current size.
+
+        Raises:
+            WrongTypeError: ``env`` is not one of those envs.
+            InvalidArgumentError: ``env`` does not draw random mazes, or its observation space
+                does not hold the positions of every stage's mazes (see the module).
+        """
+        target = _maze_env(env)
         world = target.options.world
         if world is not None:
             raise InvalidArgumentError(
@@ -140,6 +148,7 @@ class MazeSizeCurriculum:
                 "come from a world sampler (world=a callable), which maze_size does not change: "
                 "let the sampler draw the curriculum's size, generate_maze(*curriculum.size, ...)"
             )
+        _check_stages_fit(env, target.options, self.sizes)
         target.options = dataclasses.replace(target.options, maze_size=self.size)
 
     def state(self) -> dict[str, Any]:
@@ -197,3 +206,61 @@ def _checked_size(size: Any) -> tuple[int, int]:
             f"{MAX_ENV_CELLS} cells in all, found {_shown(size)}"
         )
     return int(values[0]), int(values[1])
+
+
+def _maze_env(env: Any) -> EPuckMazeEnv | EPuckMazeVectorEnv:
+    """The maze env (or native vector env) whose options draw ``env``'s mazes."""
+    target = getattr(env, "unwrapped", env)
+    if isinstance(target, MazeGoalEnv):
+        return target.maze
+    if isinstance(target, MazeGoalVectorEnv):
+        return target.mazes
+    if not isinstance(target, (EPuckMazeEnv, EPuckMazeVectorEnv)):
+        raise WrongTypeError(
+            "expected a mazesim maze env, a goal env or their native vector env, found "
+            f"{_a_type(target)}"
+        )
+    return target
+
+
+#: How far, in metres, a maze may reach past the bounds its space holds (float32 rounding).
+_BOUNDS_TOLERANCE = 1e-6
+
+
+def _position_bounds(env: Any) -> tuple[float, float, float, float] | None:
+    """The x, y bounds in metres of the positions ``env``'s observation space holds (min x,
+    min y, max x, max y), or None when it observes no position in metres."""
+    target = getattr(env, "unwrapped", env)
+    space = getattr(target, "single_observation_space", target.observation_space)
+    if isinstance(target, (MazeGoalEnv, MazeGoalVectorEnv)):
+        box = space["achieved_goal"]
+        return (float(box.low[0]), float(box.low[1]), float(box.high[0]), float(box.high[1]))
+    names = target.observation_names
+    if target._features is not None or "x" not in names:  # the features' x is 0 to 1
+        return None
+    x, y = names.index("x"), names.index("y")
+    low, high = space.low, space.high
+    return (float(low[x]), float(low[y]), float(high[x]), float(high[y]))
+
+
+def _check_stages_fit(env: Any, options: EnvOptions, sizes: Sequence[tuple[int, int]]) -> None:
+    """Refuses stages whose mazes reach outside the positions ``env``'s space holds."""
+    held = _position_bounds(env)
+    if held is None:
+        return
+    for size in sizes:
+        xmin, ymin, xmax, ymax = dataclasses.replace(options, maze_size=size).random_maze(0).bounds
+        if (
+            xmin < held[0] - _BOUNDS_TOLERANCE
+            or ymin < held[1] - _BOUNDS_TOLERANCE
+            or xmax > held[2] + _BOUNDS_TOLERANCE
+            or ymax > held[3] + _BOUNDS_TOLERANCE
+        ):
+            largest = max(sizes, key=lambda s: s[0] * s[1])
+            raise InvalidArgumentError(
+                "expected every stage's mazes to lie within the positions the env's observation "
+                f"space holds (x {held[0]:.3f} to {held[2]:.3f} m, y {held[1]:.3f} to "
+                f"{held[3]:.3f} m, its maze_size {options.maze_size}); found the stage {size}, "
+                f"whose mazes reach x {xmax:.3f} m, y {ymax:.3f} m: make the env with "
+                f"maze_size={largest}, the curriculum's largest mazes"
+            )

@@ -71,6 +71,9 @@ class MazeGoalEnv(gymnasium.Env[Observation, Any]):
         self.maze = EPuckMazeEnv(render_mode=render_mode, **options)
         _check_goal(self.maze.world, self.maze.goal_disc, self.maze.options)
         self.render_mode = render_mode
+        # The maze env's own metadata, whose render_fps is its control step's rate (7.8125 at
+        # 128 ms): the class's is the default 32 ms step's, which RecordVideo would play.
+        self.metadata = self.maze.metadata
         self.action_space = self.maze.action_space
         self.observation_space = _goal_space(  # type: ignore[assignment]
             self.maze.observation_space, self.maze.world

@@ -195,6 +195,9 @@ class MazesimVecEnv(VecEnv):
             vector_env.single_observation_space,
             vector_env.single_action_space,
         )
+        # The frame rate of the environments' control step, which DummyVecEnv takes from its
+        # first env's metadata and VecVideoRecorder plays videos at (30 without it).
+        self.metadata = {**self.metadata, "render_fps": native.metadata["render_fps"]}
         self._actions: Any = None
 
     def reset(self) -> VecEnvObs:
