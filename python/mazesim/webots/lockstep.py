@@ -46,7 +46,7 @@ import time
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from multiprocessing.connection import wait
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 
@@ -522,7 +522,8 @@ class Fleet:
         world, report = import_wbt_text(text, self._path)
         # The e-pucks a supervisor imports carry their shapes, as the world file's do.
         running = {int(r["line"]) for i, r in enumerate(self._robots) if i not in self.gone}
-        report = dict(report, robots=carrying_imported(report.get("robots") or [], text, running))
+        with_shapes = carrying_imported(report.get("robots") or [], text, running)
+        report["robots"] = cast(Any, with_shapes)
         change = robot_change(self._robots, self._simulators, self.gone, report, world)
         shared = {id(s.simulator) for s in self._simulators if isinstance(s, RobotView)}
         own = {

@@ -150,10 +150,10 @@ def carrying_imported(
     if not added or not running:
         return list(robots)
     new_lines = {int(r["line"]) for r in added}
-    seen_from = next(
-        (r for r in robots if int(r["line"]) in running), {"line": min(running), "model": None}
-    )
-    scene = read_scenes(text, [(seen_from.get("model"), int(seen_from["line"]))])[0]
+    seen_from = next((r for r in robots if int(r["line"]) in running), None)
+    model = None if seen_from is None else seen_from.get("model")
+    line = min(running) if seen_from is None else int(seen_from["line"])
+    scene = read_scenes(text, [(None if model is None else str(model), line)])[0]
     placed: list[Mapping[str, Any]] = []
     for robot in robots:
         carried = []
