@@ -93,6 +93,39 @@ class MultiRobotBatch:
         self.live = np.zeros((n, r), bool)
         self.steps = np.zeros(n, np.int64)
 
+    def __getstate__(self) -> dict[str, Any]:
+        """What pickling and deep-copying keep: everything, the batch engine as one snapshot per
+        environment, as the single-robot vector env keeps its own."""
+        state = self.__dict__.copy()
+        simulator = state.pop("simulator")
+        state["_snapshots"] = (
+            None if simulator is None else [simulator.snapshot_env(i) for i in range(self.num_envs)]
+        )
+        return state
+
+    def __setstate__(self, state: dict[str, Any]) -> None:
+        """Rebuilds the batch engine of the episodes' worlds from its snapshots: the copy steps
+        on, bit for bit, as the original does."""
+        snapshots = state.pop("_snapshots")
+        self.__dict__.update(state)
+        self.simulator = None
+        if snapshots is not None:
+            simulator = self._new_simulator([d for d in self.draws if d is not None])
+            for i, snapshot in enumerate(snapshots):
+                simulator.restore_env(i, snapshot)
+            self.simulator = simulator
+
+    def _new_simulator(self, draws: Sequence[EpisodeDraw]) -> BatchSimulator:
+        """The batch engine of the episodes ``draws``, one per environment, at their starts."""
+        return BatchSimulator(
+            [d.world for d in draws],
+            robot=self.profile,
+            seeds=[d.seed for d in draws],
+            noise=self.noise,
+            control_step_ms=self.control_step_ms,
+            threads=self.threads,
+        )
+
     @property
     def observation_width(self) -> int:
         """Values in each robot's observation."""
@@ -139,14 +172,7 @@ class MultiRobotBatch:
         if self.simulator is None:
             if len(draws) != self.num_envs:
                 raise InvalidArgumentError("expected the first reset to start every environment")
-            self.simulator = BatchSimulator(
-                [d.world for d in draws],
-                robot=self.profile,
-                seeds=[d.seed for d in draws],
-                noise=self.noise,
-                control_step_ms=self.control_step_ms,
-                threads=self.threads,
-            )
+            self.simulator = self._new_simulator(draws)
             width = self.simulator.observation_width
             self._readings = np.zeros((self.num_envs, self.num_robots, width), np.float32)
         else:

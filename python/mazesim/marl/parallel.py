@@ -21,7 +21,13 @@ from pettingzoo import ParallelEnv
 
 from mazesim.envs.errors import EnvClosedError, ResetNeededError, check_options, check_seed
 from mazesim.envs.spaces import real_actions
-from mazesim.errors import InvalidActionError, InvalidArgumentError, _a_type, _shown
+from mazesim.errors import (
+    InvalidActionError,
+    InvalidArgumentError,
+    UnknownNameError,
+    _a_type,
+    _shown,
+)
 from mazesim.marl.batch import MultiRobotBatch
 from mazesim.marl.render import SwarmRenderer
 from mazesim.marl.tasks import MultiRobotTask
@@ -96,12 +102,30 @@ class MultiRobotParallelEnv(ParallelEnv[str, Observation, npt.NDArray[np.float32
         self._closed = False
 
     def observation_space(self, agent: str) -> gymnasium.spaces.Space[Any]:
-        """Every agent's observation space: ``Box`` of the task's width, float32."""
-        return self._observation_spaces[agent]
+        """Every agent's observation space: ``Box`` of the task's width, float32.
+
+        Raises:
+            UnknownNameError: ``agent`` is none of ``possible_agents`` (a ``LookupError``).
+        """
+        return self._observation_spaces[self._agent_named(agent)]
 
     def action_space(self, agent: str) -> gymnasium.spaces.Space[Any]:
-        """Every agent's action space: ``Box(-1, 1, (2,))`` wheel speed fractions."""
-        return self._action_spaces[agent]
+        """Every agent's action space: ``Box(-1, 1, (2,))`` wheel speed fractions.
+
+        Raises:
+            UnknownNameError: ``agent`` is none of ``possible_agents`` (a ``LookupError``).
+        """
+        return self._action_spaces[self._agent_named(agent)]
+
+    def _agent_named(self, agent: Any) -> str:
+        """``agent``, one of ``possible_agents``; else the error naming them and the one meant."""
+        if isinstance(agent, str) and agent in self.possible_agents:
+            return agent
+        raise UnknownNameError(
+            f"expected one of the agents {self.possible_agents}, found {_shown(agent)}",
+            available=list(self.possible_agents),
+            name=agent if isinstance(agent, str) else None,
+        )
 
     def reset(
         self, seed: int | None = None, options: dict[str, Any] | None = None
@@ -234,6 +258,14 @@ class MultiRobotParallelEnv(ParallelEnv[str, Observation, npt.NDArray[np.float32
             self._live.close()
             self._live = None
         self._closed = True
+
+    def __getstate__(self) -> dict[str, Any]:
+        """What pickling and deep-copying keep: the episode as it stands (the batch keeps its
+        engine as snapshots); the picture and its window are made again when asked for."""
+        state = self.__dict__.copy()
+        state["_renderer"] = None
+        state["_live"] = None
+        return state
 
     def _check_open(self) -> None:
         if self._closed:

@@ -46,7 +46,7 @@ import time
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from multiprocessing.connection import wait
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 
@@ -70,7 +70,13 @@ from mazesim.webots.requirements import PreparedController, prepare_controller, 
 from mazesim.webots.robots_changed import RemovedRobot, RobotChange, robot_change
 from mazesim.webots.runner import CONTROLLER_SUFFIXES, EXIT_INTERRUPTED, OTHER_LANGUAGES
 from mazesim.webots.scene import Scene, read_scene, read_scenes, read_world_text
-from mazesim.webots.shared_world import RobotView, carrying, shared_simulator, with_robots_of
+from mazesim.webots.shared_world import (
+    RobotView,
+    carrying,
+    carrying_imported,
+    shared_simulator,
+    with_robots_of,
+)
 from mazesim.webots.simulation import WorldReset, robot_profile_name
 from mazesim.webots.solids import Pose2, WorldSolids, carried_over
 from mazesim.webots.stock_controllers import stock_controller
@@ -514,6 +520,10 @@ class Fleet:
         from mazesim.webots.importer import import_wbt_text
 
         world, report = import_wbt_text(text, self._path)
+        # The e-pucks a supervisor imports carry their shapes, as the world file's do.
+        running = {int(r["line"]) for i, r in enumerate(self._robots) if i not in self.gone}
+        with_shapes = carrying_imported(report.get("robots") or [], text, running)
+        report["robots"] = cast(Any, with_shapes)
         change = robot_change(self._robots, self._simulators, self.gone, report, world)
         shared = {id(s.simulator) for s in self._simulators if isinstance(s, RobotView)}
         own = {

@@ -30,7 +30,7 @@ from mazesim._core import World
 from mazesim._toml import dump_toml, load_toml
 from mazesim.errors import MazesimError, _shown
 from mazesim.webots.proto_fields import robot_label
-from mazesim.webots.shared_world import RobotView, with_robots_of
+from mazesim.webots.shared_world import RobotView, placed_robot, with_robots_of
 
 __all__ = ["RemovedRobot", "RobotChange", "kept_robots", "robot_change"]
 
@@ -154,9 +154,7 @@ def robot_change(
         index = running.get(int(robot["line"]))
         if index is None and robot in added:
             index = len(robots) + added.index(robot)
-            x, y, yaw = (float(v) for v in robot["pose"])
-            entry = {"name": f"robot-{index}", "x": x, "y": y, "yaw": yaw}
-            placed.append(dict(entry, profile=robot.get("profile") or "e-puck"))
+            placed.append(placed_robot(f"robot-{index}", robot, robot["pose"]))
             kept.append(None)
         elif index is not None and isinstance(simulators[index], RobotView):
             placed.append(entries[f"robot-{index}"])
@@ -185,9 +183,7 @@ def _first_e_pucks(
     layout.pop("start", None)
     placed = []
     for k, robot in enumerate(added):
-        x, y, yaw = (float(v) for v in robot["pose"])
-        entry = {"name": f"robot-{count + k}", "x": x, "y": y, "yaw": yaw}
-        placed.append(dict(entry, profile=robot.get("profile") or "e-puck"))
+        placed.append(placed_robot(f"robot-{count + k}", robot, robot["pose"]))
     layout["robots"] = placed
     changed = World.from_toml(dump_toml(layout), source=source)
     order = [count + k for k in range(len(added))]

@@ -15,14 +15,14 @@ holds) is run with a simulator per robot instead, with a warning.
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
+from collections.abc import Collection, Mapping, Sequence
 from typing import Any
 
 from mazesim._core import RobotProfile, Simulator, World
 from mazesim._toml import dump_toml, load_toml
 from mazesim.errors import MazesimError
 from mazesim.webots.robot_frames import carried_shapes
-from mazesim.webots.scene import Scene
+from mazesim.webots.scene import Scene, read_scenes
 
 #: The heights (m) the E-puck's infra-red rays run at: from its sensors, 3.3 cm above the
 #: floor, to 4.4 cm at the end of their 7 cm (``docs/webots.md``). A shape another e-puck
@@ -36,6 +36,8 @@ __all__ = [
     "INFRARED_HEIGHTS",
     "RobotView",
     "carrying",
+    "carrying_imported",
+    "placed_robot",
     "shared_simulator",
     "with_robots_of",
 ]
@@ -137,6 +139,44 @@ def carrying(
     return placed
 
 
+def carrying_imported(
+    robots: Sequence[Mapping[str, Any]], text: str, running: Collection[int]
+) -> list[Mapping[str, Any]]:
+    """A changed world's import report ``robots`` (the world's text ``text``), each e-puck a
+    supervisor imported (on none of the ``running`` robots' lines) with the shapes its node
+    carries, as :func:`carrying` gives a world file's e-pucks theirs: read in the scene of a
+    running robot's run, in which the imported node is one of the others."""
+    added = [r for r in robots if r.get("profile") is not None and int(r["line"]) not in running]
+    if not added or not running:
+        return list(robots)
+    new_lines = {int(r["line"]) for r in added}
+    seen_from = next((r for r in robots if int(r["line"]) in running), None)
+    model = None if seen_from is None else seen_from.get("model")
+    line = min(running) if seen_from is None else int(seen_from["line"])
+    scene = read_scenes(text, [(None if model is None else str(model), line)])[0]
+    placed: list[Mapping[str, Any]] = []
+    for robot in robots:
+        carried = []
+        line = int(robot["line"])
+        if line in new_lines:
+            carried = carried_shapes(scene, line, E_PUCK_BODY_RADIUS, INFRARED_HEIGHTS)
+        placed.append({**robot, "carried": carried} if carried else robot)
+    return placed
+
+
+def placed_robot(name: str, robot: Mapping[str, Any], pose: Sequence[float]) -> dict[str, Any]:
+    """The ``[[robots]]`` entry of the shared simulator's world for a robot of an import report
+    (``robot``) at ``pose``: its name there, its profile and the shapes it carries
+    (:func:`carrying`, :func:`carrying_imported`). Every robot the shared simulator holds, of
+    the world file or imported by a supervisor, is placed by it, so that they are alike."""
+    x, y, yaw = (float(v) for v in pose)
+    entry: dict[str, Any] = {"name": name, "x": x, "y": y, "yaw": yaw}
+    entry["profile"] = robot.get("profile") or "e-puck"
+    if robot.get("carried"):
+        entry["carried"] = list(robot["carried"])
+    return entry
+
+
 def shared_simulator(
     world: World,
     robots: Sequence[Mapping[str, Any]],
@@ -205,12 +245,8 @@ def _built(
 ) -> Simulator:
     """The simulator of ``layout`` with the robots ``indices`` at ``poses``."""
     placed = dict(layout, robots=[])
-    for index, (x, y, yaw) in zip(indices, poses):
-        profile = robots[index].get("profile") or "e-puck"
-        entry = {"name": f"robot-{index}", "x": x, "y": y, "yaw": yaw, "profile": profile}
-        if robots[index].get("carried"):
-            entry["carried"] = list(robots[index]["carried"])
-        placed["robots"].append(entry)
+    for index, pose in zip(indices, poses):
+        placed["robots"].append(placed_robot(f"robot-{index}", robots[index], pose))
     shared = World.from_toml(dump_toml(placed), source=source)
     if not profiles:
         return Simulator(shared, seed=seed, noise=noise)
