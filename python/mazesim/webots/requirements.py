@@ -77,7 +77,8 @@ QT_OFFSCREEN_NOTE = (
     "is not set"
 )
 #: Calls that limit a motor's torque (Python and C API; Webots reference manual, Motor), which
-#: mazesim does not model (a motor's acceleration it does: ``Motor.setAcceleration``).
+#: mazesim does not model but for a torque of 0, which leaves the motor without control (a
+#: motor's acceleration it does model: ``Motor.setAcceleration``).
 _MOTOR_LIMITS = re.compile(
     r"\b(setAvailableTorque|setAvailableForce|"
     r"wb_motor_set_available_torque|wb_motor_set_available_force)"
@@ -86,8 +87,8 @@ _MOTOR_LIMITS = re.compile(
 #: The statement for a controller that sets them.
 MOTOR_LIMITS = (
     "motor torque limits ({calls}): mazesim's wheels reach their commanded speed as Webots' "
-    "motors do at full torque; only the floor's friction limits how fast an imported E-puck's "
-    "body starts"
+    "motors do at full torque (with none, 0, they do not drive, as in Webots); only the "
+    "floor's friction limits how fast an imported E-puck's body starts"
 )
 #: Supervisor calls that add nodes to the running world or remove them (the Python and C++
 #: names, then the C API's; Webots reference manual, Supervisor), which mazesim does in part; and
