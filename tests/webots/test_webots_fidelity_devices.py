@@ -153,7 +153,6 @@ def test_a_speaker_plays_its_sound_for_the_sound_s_duration(tmp_path: Path) -> N
     assert playing == [True] * 15 + [False] * 15
 
 
-@pytest.mark.xfail(strict=True, reason="sensors' resolution fields are not read yet")
 def test_a_gps_and_a_compass_read_to_their_resolution(tmp_path: Path) -> None:
     """GPS and Compass ``resolution`` (reference manual: "the resolution of the sensor"; Webots
     rounds each value v to int(v / r + 0.5) * r, ``WbMathsUtilities::discretize``). The GPS
@@ -215,7 +214,6 @@ def test_a_cpp_controller_integrates_its_odometry(tmp_path: Path, own_cache: Pat
     assert log["time"] == pytest.approx(0.992) and log["sampling"] == 32
 
 
-@pytest.mark.xfail(strict=True, reason="sensors' resolution fields are not read yet")
 def test_a_sonar_s_noise_column_and_resolution(tmp_path: Path) -> None:
     """DistanceSensor ``lookupTable`` third column: the standard deviation of the Gaussian noise
     relative to the value; ``resolution`` 1 rounds each reading to a whole number (reference

@@ -362,6 +362,15 @@ class Device(metaclass=_DeviceType):
         return f"{type(self).__name__}({self._name!r})"
 
 
+def discretize(value: float, resolution: float) -> float:
+    """``value`` to a sensor's ``resolution`` as Webots rounds it
+    (``WbMathsUtilities::discretize``: ``int(value / resolution + 0.5) * resolution``, the cast
+    truncating towards 0, so that -0.7 of a step reads 0); NaN and infinities as they are."""
+    if not math.isfinite(value):
+        return value
+    return math.trunc(value / resolution + 0.5) * resolution
+
+
 class _Sensor(Sampled, Device):
     """A sampled sensor: enable, disable, getSamplingPeriod, getValue."""
 
@@ -371,6 +380,9 @@ class _Sensor(Sampled, Device):
         self._period_steps = 0
         self._enabled_at = 0
         self._value: Any = math.nan
+        #: The node's ``resolution``: each value read is rounded to it (-1, Webots' default:
+        #: not at all).
+        self._resolution = -1.0
 
     def enable(self, samplingPeriod: int) -> None:
         """Reads the sensor every ``samplingPeriod`` ms (rounded up to whole basic steps)."""
@@ -400,7 +412,15 @@ class _Sensor(Sampled, Device):
             self._period_steps
             and (self._simulation.steps - self._enabled_at) % self._period_steps == 0
         ):
-            self._value = self._read()
+            self._value = self._resolved(self._read())
+
+    def _resolved(self, value: Any) -> Any:
+        """A reading (a number or a list of them) to the sensor's resolution."""
+        if self._resolution <= 0.0:
+            return value
+        if isinstance(value, list):
+            return [discretize(float(v), self._resolution) for v in value]
+        return discretize(float(value), self._resolution)
 
     def _read(self) -> Any:
         raise NotImplementedError

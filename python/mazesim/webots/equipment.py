@@ -97,6 +97,22 @@ EPUCK_DISTANCE_SENSOR_MODEL = "e-puck distance sensor"
 
 #: Devices reading a vector in their own frame (``_TableVector._device_frame``).
 _DEVICE_FRAME_KINDS = frozenset({"Compass", "Accelerometer", "Gyro"})
+#: The devices whose values Webots rounds to their node's ``resolution`` field (each value
+#: read: ``WbDistanceSensor``, ``WbGps``, ``WbCompass``, ``WbAccelerometer``, ``WbGyro``,
+#: ``WbLightSensor``, ``WbTouchSensor``, ``WbPositionSensor``); the InertialUnit rounds its
+#: quaternion instead, which mazesim does not.
+_RESOLVED_KINDS = frozenset(
+    {
+        "DistanceSensor",
+        "GPS",
+        "Compass",
+        "Accelerometer",
+        "Gyro",
+        "LightSensor",
+        "TouchSensor",
+        "PositionSensor",
+    }
+)
 #: The devices whose reading depends on their axes on the robot when a mount tilts them.
 _TILTED_KINDS = _DEVICE_FRAME_KINDS | {"InertialUnit"}
 
@@ -211,7 +227,11 @@ def extension_device(simulation: RobotSimulation, entry: Mapping[str, Any]) -> D
             file=sys.stderr,
         )
         return None
-    return build()
+    device = build()
+    resolution = fields.get("resolution")
+    if kind in _RESOLVED_KINDS and isinstance(resolution, int | float):
+        device._resolution = float(resolution)  # type: ignore[attr-defined]
+    return device
 
 
 def _still_mount(simulation: RobotSimulation) -> Mount | None:
