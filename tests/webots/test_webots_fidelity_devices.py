@@ -174,7 +174,6 @@ def test_a_turret_accelerometer_reads_through_its_own_table(tmp_path: Path) -> N
     assert log["values"] == pytest.approx([0.0, 0.0, 981.0], abs=0.5)
 
 
-@pytest.mark.xfail(strict=True, reason="the battery is not simulated")
 def test_a_robot_s_battery_is_drained_by_its_cpu(tmp_path: Path) -> None:
     """Robot ``battery`` [energy J, max J, recharge W] and ``cpuConsumption`` (10 W by default;
     reference manual, Robot): after each basic step the energy drops by the consumption times
@@ -184,6 +183,17 @@ def test_a_robot_s_battery_is_drained_by_its_cpu(tmp_path: Path) -> None:
     log = logs["battery_robot"]
     assert log["period"] == 32
     assert log["levels"] == pytest.approx([50.0 - 0.32 * k for k in range(1, 6)], abs=1e-9)
+
+
+def test_an_empty_battery_stops_the_motors(tmp_path: Path) -> None:
+    """Robot ``battery`` (reference manual: "when the current energy value reaches zero ... the
+    simulated robot stops all motion"; ``WbMotor::powerOn(false)`` leaves the motors no
+    torque): 1 J at 10 W lasts three 32 ms steps and part of a fourth, after which the wheel
+    turning at 5 rad/s stops."""
+    _, logs = run("battery_drive", tmp_path, 1.0)
+    levels, angles = zip(*logs["battery_drive"]["rows"], strict=True)
+    assert levels == pytest.approx([0.68, 0.36, 0.04, 0.0, 0.0, 0.0], abs=1e-9)
+    assert angles == pytest.approx([0.16, 0.32, 0.48, 0.64, 0.64, 0.64], abs=0.004)
 
 
 def test_a_c_controller_walks_the_e_puck_s_devices_by_index(

@@ -362,6 +362,21 @@ class Device(metaclass=_DeviceType):
         return f"{type(self).__name__}({self._name!r})"
 
 
+def battery_energy(simulation: RobotSimulation, steps: int | None = None) -> float:
+    """The energy (J) left in the robot's battery after ``steps`` basic steps (by default, the
+    steps taken), as Webots drains it (``WbRobot::postPhysicsStep``): the ``battery`` field's
+    first value less the robot's ``cpuConsumption`` (W) for each basic step, down to 0; its
+    motors consume nothing here (mazesim has no torques) and nothing recharges it (no
+    Charger). -1 for a robot without a battery, as Webots gives it."""
+    scene = simulation.scene
+    battery = getattr(scene, "robot_battery", ())
+    if not battery:
+        return -1.0
+    taken = simulation.steps if steps is None else steps
+    used = scene.robot_cpu_consumption * simulation.basic_time_step_ms / 1000.0 * taken
+    return max(0.0, battery[0] - used) if battery[0] > 0.0 else battery[0]
+
+
 def discretize(value: float, resolution: float) -> float:
     """``value`` to a sensor's ``resolution`` as Webots rounds it
     (``WbMathsUtilities::discretize``: ``int(value / resolution + 0.5) * resolution``, the cast
@@ -788,8 +803,9 @@ class Motor(Device):
         """The wheel speed (rad/s) for the next step, the wheel being at ``angle``: the motor
         control's, reached at once or, with an acceleration set, ramped towards from the last
         step's by at most the acceleration times the step."""
-        if self._available_torque == 0.0:
-            # Webots: "no control" (WbMotor::computeCurrentDynamicVelocity).
+        if self._available_torque == 0.0 or battery_energy(self._simulation) == 0.0:
+            # Webots: "no control" (WbMotor::computeCurrentDynamicVelocity); an empty battery
+            # powers the motors off (WbMotor::powerOn), leaving them none.
             self._current_speed = 0.0
             return 0.0
         control = None
