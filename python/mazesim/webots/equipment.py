@@ -28,7 +28,7 @@ from mazesim.webots.devices import (
     PositionSensor,
     _Sensor,
 )
-from mazesim.webots.inert import Display, Lidar, Pen, Speaker
+from mazesim.webots.inert import Display, Pen, Speaker
 from mazesim.webots.joints import JointMotor, JointPositionSensor, LinearJointMotor, pair_joints
 from mazesim.webots.keyboard import Joystick, Keyboard, Mouse
 from mazesim.webots.radio_devices import (
@@ -39,6 +39,7 @@ from mazesim.webots.radio_devices import (
     receiver_from_fields,
 )
 from mazesim.webots.robot_frames import Mount, robot_mount
+from mazesim.webots.scanners import RayLidar, RayRangeFinder
 from mazesim.webots.sensors import (
     DISTANCE_SENSOR_APERTURE,
     GPS,
@@ -214,7 +215,8 @@ def extension_device(simulation: RobotSimulation, entry: Mapping[str, Any]) -> D
             name, simulation, int(fields.get("width", 64)), int(fields.get("height", 64))
         ),
         "Pen": lambda: Pen(name, simulation),
-        "Lidar": lambda: Lidar(name, simulation),
+        "Lidar": lambda: RayLidar(name, simulation, mount, fields),
+        "RangeFinder": lambda: RayRangeFinder(name, simulation, mount, fields),
         "RotationalMotor": lambda: JointMotor(name, simulation, fields),
         "LinearMotor": lambda: LinearJointMotor(name, simulation, fields),
         "PositionSensor": lambda: JointPositionSensor(name, simulation),

@@ -108,17 +108,17 @@ SCENE_CHANGES = (
     "e-pucks and robots too in a run of the whole world (a robot that is not an e-puck is an "
     "obstacle); changes of other fields print an error and change nothing"
 )
-#: Lidar and RangeFinder readings (the Python and C++ names, then the C API's; Webots reference
-#: manual, Lidar and RangeFinder), which mazesim does not simulate.
+#: Lidar point clouds and the C API's range finder (the Python and C++ names, then the C
+#: API's; Webots reference manual, Lidar and RangeFinder), which mazesim does not simulate (a
+#: lidar's and a Python range finder's range images it does: ``mazesim.webots.scanners``).
 _RANGE_READINGS = re.compile(
-    r"\b(getRangeImage|getLayerRangeImage|getPointCloud|getLayerPointCloud|"
-    r"wb_lidar_get_range_image|wb_lidar_get_layer_range_image|wb_lidar_get_point_cloud|"
+    r"\b(getPointCloud|getLayerPointCloud|wb_lidar_get_point_cloud|"
     r"wb_lidar_get_layer_point_cloud|wb_range_finder_get_range_image)\s*\("
 )
 #: The statement for a controller that reads them.
 RANGE_READINGS = (
-    "Webots' Lidar and RangeFinder readings ({calls}): mazesim simulates neither device, so a "
-    "range image and a point cloud are None (NULL in C and C++) and their sizes 0"
+    "Webots' Lidar point clouds and C RangeFinder ({calls}): mazesim's lidar gives range "
+    "images only, so a point cloud is None (NULL in C and C++) and its size 0"
 )
 #: Wheel speed (rad/s) of a turn in place above which Webots' E-puck has been seen to turn
 #: more slowly than its wheels' kinematics say. Controllers tuned in Webots agree with the
