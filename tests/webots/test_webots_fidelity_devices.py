@@ -141,7 +141,6 @@ def write_beep(path: Path, seconds: float) -> None:
         sound.writeframes(b"\x80" * int(8000 * seconds))
 
 
-@pytest.mark.xfail(strict=True, reason="mazesim's speaker plays nothing")
 def test_a_speaker_plays_its_sound_for_the_sound_s_duration(tmp_path: Path) -> None:
     """``wb_speaker_is_sound_playing`` (reference manual, Speaker): true while the sound
     played by ``wb_speaker_play_sound`` (without loop) plays: a 0.5 s sound for the steps
