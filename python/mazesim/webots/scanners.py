@@ -21,10 +21,10 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from mazesim.webots.inert import Lidar, RangeFinder
+from mazesim.webots.sensors import DeviceMount
 from mazesim.webots.walls_now import WallsNow
 
 if TYPE_CHECKING:
-    from mazesim.webots.sensors import DeviceMount
     from mazesim.webots.simulation import RobotSimulation
 
 __all__ = ["RayLidar", "RayRangeFinder"]
