@@ -126,6 +126,17 @@ INSTANCES: dict[str, str] = {
         " report={'path': 'tests/data/webots-worlds/e-puck.R2023b.wbt'})))("
         "__import__('mazesim.webots', fromlist=['scene_edits', 'simulation']))"
     ),
+    # A lidar and a range finder on the robot of a prepared world, with their nodes' defaults.
+    "mazesim.webots.scanners.RayLidar": (
+        "(lambda w: w.scanners.RayLidar('lidar', w.simulation.prepare(world),"
+        " w.sensors.DeviceMount(), {}))("
+        "__import__('mazesim.webots', fromlist=['scanners', 'sensors', 'simulation']))"
+    ),
+    "mazesim.webots.scanners.RayRangeFinder": (
+        "(lambda w: w.scanners.RayRangeFinder('range-finder', w.simulation.prepare(world),"
+        " w.sensors.DeviceMount(), {}))("
+        "__import__('mazesim.webots', fromlist=['scanners', 'sensors', 'simulation']))"
+    ),
     # The movie of a supervisor of a prepared world, not recording.
     "mazesim.webots.movie.MovieRecorder": (
         "(lambda w: w.movie.MovieRecorder(w.simulation.prepare(world)))("

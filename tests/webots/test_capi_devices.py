@@ -94,14 +94,14 @@ def test_c_and_cpp_controllers_read_an_inertial_unit_and_a_lidar_as_python_does(
     # The e-puck starts turned 0.5 rad and spins left on the spot.
     assert len(yaws) == 4 and yaws[0] > 0.5 and yaws == sorted(yaws)
     assert all(line.startswith("rpy 0.000000 0.000000 ") for line in lines[::4])
-    # mazesim simulates no lidar: the device is there and reads as one without points, which
-    # the run says at its start.
-    assert lines[2] == "ranges none resolution 0 layers 0"
-    assert lines[3] == "cloud none points 0 fov none max none"
+    # The lidar's range image is its node's 360 points of one layer (mazesim.webots.scanners);
+    # it has no point cloud, which the run says at its start.
+    assert lines[2] == "ranges 360 resolution 360 layers 1"
+    assert lines[3] == "cloud none points 360 fov 6.280000 max 0.500000"
     assert runs[1].xs == runs[0].xs and runs[2].final_pose == runs[0].final_pose
     calls = (
-        ["wb_lidar_get_point_cloud", "wb_lidar_get_range_image"],
-        ["getPointCloud", "getRangeImage"],
+        ["wb_lidar_get_point_cloud"],
+        ["getPointCloud"],
     )
     for twin, read in zip(twins, (calls[1], calls[0], calls[1])):
         prepared = prepare_controller(str(twin))

@@ -292,20 +292,21 @@ def test_c_and_cpp_controllers_read_lens_torque_tables_and_robot_as_python_does(
     assert [(run.exit_status, run.error) for run in runs] == [(0, ""), (0, ""), (0, "")]
     assert outputs[1] == outputs[0] and outputs[2] == outputs[0]
     # The e-puck's camera has neither zoom nor focus (Webots' messages say so on stderr), its
-    # motors the E-puck PROTO's torque, its encoders no brake, and the run no battery, no user
-    # and no robot window.
+    # motors the E-puck PROTO's maximum torque and the available torque set (5), its encoders
+    # no brake, its battery sensor no reading before its first period (the period set), and
+    # the run no user and no robot window.
     assert outputs[0].splitlines() == [
         "fov 0.840000 0.840000 0.840000",
         "exposure 1.000000 near 0.005500",
         "focus 0.000000 0.000000 0.000000 0.000000",
-        "torque 10.000000 10.000000",
-        "force 10.000000 10.000000",
+        "torque 5.000000 10.000000",
+        "force 5.000000 10.000000",
         "multiplier 1.000000 brake 0",
         "light table 2 1.000000 4095.000000 0.010000",
         "accelerometer table 2",
         "encoder type 0 brake 0",
         "dms 12°34'57.36\"",
-        "battery none 0",
+        "battery none 32",
         'type 34 urdf <robot name="my_e-puck">',
         "window none",
         "feedback 0.000000 0",

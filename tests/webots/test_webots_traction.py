@@ -189,8 +189,8 @@ def test_a_controller_that_limits_its_motors_is_told_at_its_start(tmp_path: Path
     # limit is not.
     assert [m for m in prepared.missing if m.startswith("motor torque")] == [
         "motor torque limits (setAvailableTorque): mazesim's wheels reach their commanded speed "
-        "as Webots' motors do at full torque; only the floor's friction limits how fast an "
-        "imported E-puck's body starts"
+        "as Webots' motors do at full torque (with none, 0, they do not drive, as in Webots); "
+        "only the floor's friction limits how fast an imported E-puck's body starts"
     ]
     (tmp_path / "ramp.c").write_text(
         "#include <webots/motor.h>\n"

@@ -20,7 +20,7 @@ import numpy as np
 
 from mazesim._toml import load_toml
 from mazesim.errors import MOST_MESSAGE, InvalidArgumentError, _a_type, _shortened
-from mazesim.webots.last_commands import WheelCommand, motor_speed
+from mazesim.webots.last_commands import PositionControl, WheelCommand, motor_speed
 from mazesim.webots.node_types import node_type
 
 if TYPE_CHECKING:
@@ -53,6 +53,9 @@ def _print_error(message: str) -> None:
 
 #: The longest sampling period Webots takes: its ``enable`` functions take a C ``int`` of ms.
 MAX_SAMPLING_PERIOD_MS = 2**31 - 1
+#: A motor's ``maxTorque`` (N m) where its node does not set it: Webots' RotationalMotor
+#: default, which the E-puck PROTO keeps.
+MAX_TORQUE = 10.0
 #: The ``aperture`` (rad) of the E-puck's proximity sensors (its ``E-puckDistanceSensor`` PROTO).
 EPUCK_PROXIMITY_APERTURE = 0.1
 
@@ -359,6 +362,30 @@ class Device(metaclass=_DeviceType):
         return f"{type(self).__name__}({self._name!r})"
 
 
+def battery_energy(simulation: RobotSimulation, steps: int | None = None) -> float:
+    """The energy (J) left in the robot's battery after ``steps`` basic steps (by default, the
+    steps taken), as Webots drains it (``WbRobot::postPhysicsStep``): the ``battery`` field's
+    first value less the robot's ``cpuConsumption`` (W) for each basic step, down to 0; its
+    motors consume nothing here (mazesim has no torques) and nothing recharges it (no
+    Charger). -1 for a robot without a battery, as Webots gives it."""
+    scene = simulation.scene
+    battery = getattr(scene, "robot_battery", ())
+    if not battery:
+        return -1.0
+    taken = simulation.steps if steps is None else steps
+    used = scene.robot_cpu_consumption * simulation.basic_time_step_ms / 1000.0 * taken
+    return max(0.0, battery[0] - used) if battery[0] > 0.0 else battery[0]
+
+
+def discretize(value: float, resolution: float) -> float:
+    """``value`` to a sensor's ``resolution`` as Webots rounds it
+    (``WbMathsUtilities::discretize``: ``int(value / resolution + 0.5) * resolution``, the cast
+    truncating towards 0, so that -0.7 of a step reads 0); NaN and infinities as they are."""
+    if not math.isfinite(value):
+        return value
+    return math.trunc(value / resolution + 0.5) * resolution
+
+
 class _Sensor(Sampled, Device):
     """A sampled sensor: enable, disable, getSamplingPeriod, getValue."""
 
@@ -368,6 +395,9 @@ class _Sensor(Sampled, Device):
         self._period_steps = 0
         self._enabled_at = 0
         self._value: Any = math.nan
+        #: The node's ``resolution``: each value read is rounded to it (-1, Webots' default:
+        #: not at all).
+        self._resolution = -1.0
 
     def enable(self, samplingPeriod: int) -> None:
         """Reads the sensor every ``samplingPeriod`` ms (rounded up to whole basic steps)."""
@@ -397,7 +427,15 @@ class _Sensor(Sampled, Device):
             self._period_steps
             and (self._simulation.steps - self._enabled_at) % self._period_steps == 0
         ):
-            self._value = self._read()
+            self._value = self._resolved(self._read())
+
+    def _resolved(self, value: Any) -> Any:
+        """A reading (a number or a list of them) to the sensor's resolution."""
+        if self._resolution <= 0.0:
+            return value
+        if isinstance(value, list):
+            return [discretize(float(v), self._resolution) for v in value]
+        return discretize(float(value), self._resolution)
 
     def _read(self) -> Any:
         raise NotImplementedError
@@ -566,6 +604,10 @@ class Motor(Device):
         #: the world restarts the motor, not this): the getters' target position and velocity.
         self._set_points = (self._target_position, self._velocity)
         self._warned_clamp = False
+        self._control = PositionControl()
+        #: The torque the motor may use (N m): its ``maxTorque`` until the controller sets
+        #: another; with none it does not drive (:meth:`setAvailableTorque`).
+        self._available_torque = self._max_torque = MAX_TORQUE
 
     def _restart(self) -> None:
         """As Webots' reset does (WbMotor::reset): position control again, at the joint's
@@ -575,6 +617,7 @@ class Motor(Device):
         self._target_position = float(self._simulation.scene.wheel_positions[self._side])
         self._velocity = self._max_velocity
         self._current_speed = 0.0
+        self._control.set_gains(self._control.gains)
 
     def setPosition(self, position: float) -> None:
         """Turns the wheel to ``position`` rad; ``float('inf')`` switches to velocity control."""
@@ -669,10 +712,44 @@ class Motor(Device):
         return 1.0
 
     def setControlPID(self, p: float, i: float, d: float) -> None:
-        """Accepted; position control keeps its proportional gain."""
+        """The gains of position control, as Webots' ``controlPID`` field: the wheel turns
+        towards its target at ``p e + i sum(e dt) + d de/dt`` (at most the velocity set), e
+        the target minus the position; the sum and the last error start again from 0."""
+        gains = (float(p), float(i), float(d))
+        if any(math.isnan(g) for g in gains):
+            _print_error("Error: wb_motor_set_control_pid() called with an invalid argument (NaN).")
+            return
+        if gains[0] <= 0.0:
+            _print_error(
+                f"Error: wb_motor_set_control_pid(): 'controlP' (currently {gains[0]:g}) must "
+                "be positive."
+            )
+            return
+        if gains[1] < 0.0 or gains[2] < 0.0:
+            _print_error(
+                "Error: wb_motor_set_control_pid(): 'controlI' and 'controlD' must be non-negative."
+            )
+            return
+        self._control.set_gains(gains)
 
     def setAvailableTorque(self, torque: float) -> None:
-        """Accepted; mazesim's wheels are driven by speed."""
+        """The torque the motor may use (N m), at most its ``maxTorque`` (Webots warns
+        beyond). With 0 the motor has no control, as in Webots: its wheel does not drive,
+        whatever velocity or position is asked, until a torque is given back; any other
+        value drives the wheel at the commanded speed (mazesim's wheels are driven by
+        speed, not torque)."""
+        torque = float(torque)
+        if math.isnan(torque) or torque < 0.0:
+            _print_error(
+                "Error: wb_motor_set_available_torque() called with negative 'torque' argument."
+            )
+            return
+        if torque > self._max_torque:
+            _print_error(
+                f'WARNING: RotationalMotor "{self._name}": The requested available motor '
+                f"torque {torque:g} exceeds 'maxTorque' = {self._max_torque:g}"
+            )
+        self._available_torque = torque
 
     def setTorque(self, torque: float) -> None:
         """Accepted; mazesim's wheels are driven by speed."""
@@ -681,12 +758,16 @@ class Motor(Device):
     setForce = setTorque
 
     def getAvailableTorque(self) -> float:
-        """The motor's maximum torque (N m) in Webots' E-puck PROTO (its default, 10)."""
-        return 10.0
+        """The torque set last by :meth:`setAvailableTorque`; the ``maxTorque`` before."""
+        return self._available_torque
 
-    getMaxTorque = getAvailableTorque
+    def getMaxTorque(self) -> float:
+        """The motor's ``maxTorque`` (N m): 10, Motor's default, which the E-puck PROTO
+        keeps."""
+        return self._max_torque
+
     getAvailableForce = getAvailableTorque
-    getMaxForce = getAvailableTorque
+    getMaxForce = getMaxTorque
 
     def enableTorqueFeedback(self, samplingPeriod: int) -> None:
         """Accepted; the feedback reads 0."""
@@ -722,7 +803,18 @@ class Motor(Device):
         """The wheel speed (rad/s) for the next step, the wheel being at ``angle``: the motor
         control's, reached at once or, with an acceleration set, ramped towards from the last
         step's by at most the acceleration times the step."""
-        speed = motor_speed(self._target_position, self._velocity, self._max_velocity, angle)
+        if self._available_torque == 0.0 or battery_energy(self._simulation) == 0.0:
+            # Webots: "no control" (WbMotor::computeCurrentDynamicVelocity); an empty battery
+            # powers the motors off (WbMotor::powerOn), leaving them none.
+            self._current_speed = 0.0
+            return 0.0
+        control = None
+        if not math.isinf(self._target_position):
+            dt = self._simulation.basic_time_step_ms / 1000.0
+            control = self._control.output(self._target_position - angle, dt)
+        speed = motor_speed(
+            self._target_position, self._velocity, self._max_velocity, angle, control
+        )
         if self._acceleration >= 0.0:
             most = self._acceleration * self._simulation.basic_time_step_ms / 1000.0
             speed = max(self._current_speed - most, min(self._current_speed + most, speed))
@@ -732,7 +824,14 @@ class Motor(Device):
     def _last_command(self, angle: float) -> WheelCommand:
         """The motor's commands as they stand, the wheel being at ``angle``: what drives the
         wheel once the controller has ended (:mod:`mazesim.webots.last_commands`)."""
-        return WheelCommand(self._target_position, self._velocity, self._max_velocity, angle)
+        return WheelCommand(
+            self._target_position,
+            self._velocity,
+            self._max_velocity,
+            angle,
+            self._control.gains[0],
+            self._available_torque != 0.0,
+        )
 
 
 class LED(Device):

@@ -28,7 +28,7 @@ from mazesim.webots.devices import (
     PositionSensor,
     _Sensor,
 )
-from mazesim.webots.inert import Display, Lidar, Pen, Speaker
+from mazesim.webots.inert import Display, Pen, Speaker
 from mazesim.webots.joints import JointMotor, JointPositionSensor, LinearJointMotor, pair_joints
 from mazesim.webots.keyboard import Joystick, Keyboard, Mouse
 from mazesim.webots.radio_devices import (
@@ -39,6 +39,7 @@ from mazesim.webots.radio_devices import (
     receiver_from_fields,
 )
 from mazesim.webots.robot_frames import Mount, robot_mount
+from mazesim.webots.scanners import RayLidar, RayRangeFinder
 from mazesim.webots.sensors import (
     DISTANCE_SENSOR_APERTURE,
     GPS,
@@ -97,6 +98,22 @@ EPUCK_DISTANCE_SENSOR_MODEL = "e-puck distance sensor"
 
 #: Devices reading a vector in their own frame (``_TableVector._device_frame``).
 _DEVICE_FRAME_KINDS = frozenset({"Compass", "Accelerometer", "Gyro"})
+#: The devices whose values Webots rounds to their node's ``resolution`` field (each value
+#: read: ``WbDistanceSensor``, ``WbGps``, ``WbCompass``, ``WbAccelerometer``, ``WbGyro``,
+#: ``WbLightSensor``, ``WbTouchSensor``, ``WbPositionSensor``); the InertialUnit rounds its
+#: quaternion instead, which mazesim does not.
+_RESOLVED_KINDS = frozenset(
+    {
+        "DistanceSensor",
+        "GPS",
+        "Compass",
+        "Accelerometer",
+        "Gyro",
+        "LightSensor",
+        "TouchSensor",
+        "PositionSensor",
+    }
+)
 #: The devices whose reading depends on their axes on the robot when a mount tilts them.
 _TILTED_KINDS = _DEVICE_FRAME_KINDS | {"InertialUnit"}
 
@@ -198,7 +215,8 @@ def extension_device(simulation: RobotSimulation, entry: Mapping[str, Any]) -> D
             name, simulation, int(fields.get("width", 64)), int(fields.get("height", 64))
         ),
         "Pen": lambda: Pen(name, simulation),
-        "Lidar": lambda: Lidar(name, simulation),
+        "Lidar": lambda: RayLidar(name, simulation, mount, fields),
+        "RangeFinder": lambda: RayRangeFinder(name, simulation, mount, fields),
         "RotationalMotor": lambda: JointMotor(name, simulation, fields),
         "LinearMotor": lambda: LinearJointMotor(name, simulation, fields),
         "PositionSensor": lambda: JointPositionSensor(name, simulation),
@@ -211,7 +229,11 @@ def extension_device(simulation: RobotSimulation, entry: Mapping[str, Any]) -> D
             file=sys.stderr,
         )
         return None
-    return build()
+    device = build()
+    resolution = fields.get("resolution")
+    if kind in _RESOLVED_KINDS and isinstance(resolution, int | float):
+        device._resolution = float(resolution)  # type: ignore[attr-defined]
+    return device
 
 
 def _still_mount(simulation: RobotSimulation) -> Mount | None:

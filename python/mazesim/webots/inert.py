@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import math
 import sys
+import wave
 from collections.abc import Callable
 from types import SimpleNamespace
 from typing import TYPE_CHECKING, Any
@@ -74,7 +75,8 @@ class _Inert(NotSimulated, _ScalarSensor):
 
 
 class Speaker(NotSimulated, Device):
-    """The e-puck's speaker: sounds and speech are accepted and not played."""
+    """The e-puck's speaker: nothing is heard, but a sound plays for as long as its file
+    lasts (``isSoundPlaying``), as Webots' speaker plays it; speech is accepted, not said."""
 
     _node_type = node_type("SPEAKER")
 
@@ -82,6 +84,8 @@ class Speaker(NotSimulated, Device):
         super().__init__(name, simulation)
         self._engine = "pico"
         self._language = "en-US"
+        #: The sounds playing, by file name: the simulated time each ends (inf: looped).
+        self._playing: dict[str, float] = {}
 
     @staticmethod
     def playSound(
@@ -93,14 +97,40 @@ class Speaker(NotSimulated, Device):
         balance: float,
         loop: bool,
     ) -> None:
-        """Accepted; nothing is played."""
+        """Plays the WAV file ``sound`` (relative to the controller's folder) on ``left`` and
+        ``right``: it plays for its duration divided by ``pitch``, or until :meth:`stop` when
+        ``loop`` is true (reference manual, Speaker); nothing is heard. A file that is not a
+        readable WAV plays for no time, with an error."""
+        speakers = {id(s): s for s in (left, right) if isinstance(s, Speaker)}
+        if not speakers:
+            return
+        try:
+            with wave.open(str(sound), "rb") as clip:
+                seconds = clip.getnframes() / float(clip.getframerate())
+        except (OSError, EOFError, wave.Error) as error:
+            print(
+                f"Error: wb_speaker_play_sound(): cannot play {sound!r}: {_shown(error)}",
+                file=sys.stderr,
+            )
+            return
+        rate = float(pitch) if float(pitch) > 0.0 else 1.0
+        for speaker in speakers.values():
+            end = math.inf if loop else speaker._simulation.clock + seconds / rate
+            speaker._playing[str(sound)] = end
 
     def stop(self, sound: str | None = None) -> None:
-        """Accepted."""
+        """Stops ``sound``, or every sound without one."""
+        if sound:
+            self._playing.pop(str(sound), None)
+        else:
+            self._playing.clear()
 
     def isSoundPlaying(self, sound: str | None = None) -> bool:
-        """False: nothing plays."""
-        return False
+        """Whether ``sound`` (any sound, without one) is still playing."""
+        now = self._simulation.clock
+        if sound:
+            return self._playing.get(str(sound), -math.inf) > now + 1e-9
+        return any(end > now + 1e-9 for end in self._playing.values())
 
     def speak(self, text: str, volume: float = 1.0) -> None:
         """Accepted; nothing is said."""

@@ -21,6 +21,7 @@ from collections.abc import Mapping, Sequence
 from typing import TYPE_CHECKING, Any
 
 from mazesim.webots.devices import Motor, PositionSensor
+from mazesim.webots.last_commands import POSITION_GAIN, PositionControl
 from mazesim.webots.node_types import node_type
 
 if TYPE_CHECKING:
@@ -39,6 +40,17 @@ def _number(fields: Mapping[str, Any], name: str, default: float) -> float:
     return float(value) if isinstance(value, int | float) else default
 
 
+def _gains(fields: Mapping[str, Any]) -> tuple[float, float, float]:
+    """The node's ``controlPID`` (Webots' default 10 0 0 where it is missing or malformed)."""
+    value = fields.get("controlPID")
+    if isinstance(value, Sequence) and len(value) == 3:
+        if all(isinstance(v, int | float) for v in value):
+            p, i, d = (float(v) for v in value)
+            if p > 0.0 and i >= 0.0 and d >= 0.0:
+                return p, i, d
+    return POSITION_GAIN, 0.0, 0.0
+
+
 class JointMotor(Motor):
     """A ``RotationalMotor`` of a joint mazesim does not simulate: it takes every command of
     Webots' motor API, and its joint turns freely as commanded; it moves nothing."""
@@ -54,6 +66,8 @@ class JointMotor(Motor):
         self._min_position = _number(fields, "minPosition", 0.0)
         self._max_position = _number(fields, "maxPosition", 0.0)
         self._max_torque = _number(fields, self._force_field, DEFAULT_MAX_TORQUE)
+        self._available_torque = self._max_torque
+        self._control = PositionControl(_gains(fields))
         self._sensor: PositionSensor | None = None  # type: ignore[assignment]
         self._angle = 0.0
         self._target_position = 0.0
@@ -76,6 +90,7 @@ class JointMotor(Motor):
         self._angle = 0.0
         self._target_position = 0.0
         self._velocity = self._max_velocity
+        self._control.set_gains(self._control.gains)
 
     def _turn(self, dt: float) -> None:
         """Turns the joint for one basic step of ``dt`` seconds, within its limits (Webots
@@ -95,14 +110,6 @@ class JointMotor(Motor):
     def getPositionSensor(self) -> PositionSensor:
         """The position sensor of the same joint (None when it has none)."""
         return self._sensor  # type: ignore[return-value]
-
-    def getAvailableTorque(self) -> float:
-        """The motor's ``maxTorque`` (``maxForce`` of a linear one)."""
-        return self._max_torque
-
-    getMaxTorque = getAvailableTorque
-    getAvailableForce = getAvailableTorque
-    getMaxForce = getAvailableTorque
 
 
 class LinearJointMotor(JointMotor):

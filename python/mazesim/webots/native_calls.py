@@ -132,6 +132,7 @@ FUNCTIONS: dict[str, Function] = {
         "device",
         "wb_motor_",
         {
+            "set_control_pid": ("setControlPID", "fff"),
             "set_available_torque": ("setAvailableTorque", "f"),
             "set_available_force": ("setAvailableForce", "f"),
             "set_torque": ("setTorque", "f"),

@@ -87,7 +87,9 @@ VALUE_NONE, VALUE_INT, VALUE_DOUBLE, VALUE_BYTES, VALUE_DOUBLES = 0, 1, 2, 3, 4
 #: Most values a CALL carries, and most bytes a value holds.
 MAX_VALUES, MAX_VALUE_BYTES = 64, 1 << 26
 #: Devices that give no reading at a step (their functions are calls).
-_UNREAD_TYPES = {node_type(name) for name in ("EMITTER", "DISPLAY", "CAMERA")}
+_UNREAD_TYPES = {
+    node_type(name) for name in ("EMITTER", "DISPLAY", "CAMERA", "LIDAR", "RANGE_FINDER")
+}
 #: Most commands one step may carry (a controller queues a few per device).
 MAX_COMMANDS = 1 << 20
 

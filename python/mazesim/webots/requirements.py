@@ -77,7 +77,8 @@ QT_OFFSCREEN_NOTE = (
     "is not set"
 )
 #: Calls that limit a motor's torque (Python and C API; Webots reference manual, Motor), which
-#: mazesim does not model (a motor's acceleration it does: ``Motor.setAcceleration``).
+#: mazesim does not model but for a torque of 0, which leaves the motor without control (a
+#: motor's acceleration it does model: ``Motor.setAcceleration``).
 _MOTOR_LIMITS = re.compile(
     r"\b(setAvailableTorque|setAvailableForce|"
     r"wb_motor_set_available_torque|wb_motor_set_available_force)"
@@ -86,8 +87,8 @@ _MOTOR_LIMITS = re.compile(
 #: The statement for a controller that sets them.
 MOTOR_LIMITS = (
     "motor torque limits ({calls}): mazesim's wheels reach their commanded speed as Webots' "
-    "motors do at full torque; only the floor's friction limits how fast an imported E-puck's "
-    "body starts"
+    "motors do at full torque (with none, 0, they do not drive, as in Webots); only the "
+    "floor's friction limits how fast an imported E-puck's body starts"
 )
 #: Supervisor calls that add nodes to the running world or remove them (the Python and C++
 #: names, then the C API's; Webots reference manual, Supervisor), which mazesim does in part; and
@@ -107,17 +108,17 @@ SCENE_CHANGES = (
     "e-pucks and robots too in a run of the whole world (a robot that is not an e-puck is an "
     "obstacle); changes of other fields print an error and change nothing"
 )
-#: Lidar and RangeFinder readings (the Python and C++ names, then the C API's; Webots reference
-#: manual, Lidar and RangeFinder), which mazesim does not simulate.
+#: Lidar point clouds and the C API's range finder (the Python and C++ names, then the C
+#: API's; Webots reference manual, Lidar and RangeFinder), which mazesim does not simulate (a
+#: lidar's and a Python range finder's range images it does: ``mazesim.webots.scanners``).
 _RANGE_READINGS = re.compile(
-    r"\b(getRangeImage|getLayerRangeImage|getPointCloud|getLayerPointCloud|"
-    r"wb_lidar_get_range_image|wb_lidar_get_layer_range_image|wb_lidar_get_point_cloud|"
+    r"\b(getPointCloud|getLayerPointCloud|wb_lidar_get_point_cloud|"
     r"wb_lidar_get_layer_point_cloud|wb_range_finder_get_range_image)\s*\("
 )
 #: The statement for a controller that reads them.
 RANGE_READINGS = (
-    "Webots' Lidar and RangeFinder readings ({calls}): mazesim simulates neither device, so a "
-    "range image and a point cloud are None (NULL in C and C++) and their sizes 0"
+    "Webots' Lidar point clouds and C RangeFinder ({calls}): mazesim's lidar gives range "
+    "images only, so a point cloud is None (NULL in C and C++) and its size 0"
 )
 #: Wheel speed (rad/s) of a turn in place above which Webots' E-puck has been seen to turn
 #: more slowly than its wheels' kinematics say. Controllers tuned in Webots agree with the

@@ -12,7 +12,12 @@ from typing import Any, ClassVar
 
 from mazesim.errors import InvalidArgumentError, _shortened, _shown
 from mazesim.webots import simulation as _simulations
-from mazesim.webots.devices import MAX_SAMPLING_PERIOD_MS, sampling_period, webots_property
+from mazesim.webots.devices import (
+    MAX_SAMPLING_PERIOD_MS,
+    battery_energy,
+    sampling_period,
+    webots_property,
+)
 from mazesim.webots.equipment import Equipment
 from mazesim.webots.inert import NotSimulated
 from mazesim.webots.keyboard import Joystick, Keyboard, Mouse
@@ -128,6 +133,10 @@ class Robot(NotSimulated):
     _warned_ground_module = False
     #: The names ``getDevice`` found no device of, in the order asked.
     _missing_devices: tuple[str, ...] = ()
+    #: The battery sensor's sampling period (ms), in basic steps, and the step it was enabled.
+    _battery_sampling: tuple[int, int, int] = (0, 0, 0)
+    #: The battery's last reading when its sensor was disabled.
+    _battery_kept = math.nan
 
     def __init__(self) -> None:
         """Attaches to the prepared simulation and finds the robot's devices.
@@ -272,19 +281,40 @@ class Robot(NotSimulated):
         return None
 
     def batterySensorEnable(self, samplingPeriod: int) -> None:
-        """Accepted; the e-puck's battery is not simulated (it reads NaN)."""
-        sampling_period(samplingPeriod, "wb_robot_battery_sensor_enable")
+        """Reads the battery every ``samplingPeriod`` ms (whole basic steps, rounded up)."""
+        period = sampling_period(samplingPeriod, "wb_robot_battery_sensor_enable")
+        if period is None:
+            return
+        basic = self._simulation.basic_time_step_ms
+        self._battery_sampling = (
+            period,
+            max(1, math.ceil(period / basic - 1e-9)) if period else 0,
+            self._simulation.steps,
+        )
 
     def batterySensorDisable(self) -> None:
-        """Accepted."""
+        """Stops reading the battery; the last reading stays."""
+        period, steps, since = self._battery_sampling
+        if steps:
+            taken = (self._simulation.steps - since) // steps * steps
+            self._battery_kept = (
+                battery_energy(self._simulation, since + taken) if taken else math.nan
+            )
+        self._battery_sampling = (0, 0, 0)
 
     def batterySensorGetValue(self) -> float:
-        """NaN: the battery is not simulated."""
-        return math.nan
+        """The energy (J) left in the robot's ``battery`` at the end of the last sampling
+        period (see :func:`~mazesim.webots.devices.battery_energy`; -1 without a battery);
+        NaN before the first period has passed."""
+        _, steps, since = self._battery_sampling
+        if not steps:
+            return self._battery_kept
+        taken = (self._simulation.steps - since) // steps * steps
+        return battery_energy(self._simulation, since + taken) if taken else math.nan
 
     def batterySensorGetSamplingPeriod(self) -> int:
-        """0."""
-        return 0
+        """The sampling period set (ms); 0 while disabled."""
+        return self._battery_sampling[0]
 
     def __del__(self) -> None:
         """Nothing, as in Webots' Python API made by SWIG (before R2023a), whose objects have

@@ -154,6 +154,9 @@ class Scene:
         synchronization: The robot's ``synchronization`` field (Webots' default TRUE).
         robot_name: The robot's ``name`` field (Webots' default for the E-puck, ``"e-puck"``).
         robot_custom_data: The robot's ``customData`` field.
+        robot_battery: The robot's ``battery`` field: its energy (J), the most it holds (J)
+            and its recharge speed (W); empty without a battery (Webots' default).
+        robot_cpu_consumption: The robot's ``cpuConsumption`` field (W; Webots' default 10).
         robot_controller: The robot's ``controller`` field as the file writes it, or None when
             the file leaves it out (or has no robot node).
         controller_args: The robot's ``controllerArgs`` (a list of strings since R2021a, one
@@ -219,6 +222,8 @@ class Scene:
     synchronization: bool = True
     robot_name: str = "e-puck"
     robot_custom_data: str = ""
+    robot_battery: tuple[float, ...] = ()
+    robot_cpu_consumption: float = 10.0
     robot_controller: str | None = None
     controller_args: list[str] = field(default_factory=list)
     camera_width: int | None = None
@@ -318,6 +323,9 @@ def _scene(
         scene.robot_def = robot.def_name
         scene.robot_name = first_value(own, "name", Field.string) or scene.robot_name
         scene.robot_custom_data = first_value(own, "customData", Field.string) or ""
+        scene.robot_battery = first_value(own, "battery", _numbers) or ()
+        cpu = first_value(own, "cpuConsumption", lambda f: f.numbers(1))
+        scene.robot_cpu_consumption = cpu[0] if cpu else scene.robot_cpu_consumption
         scene.robot_controller = first_value(own, "controller", Field.string)
         if robot.type_name in EPUCK_TYPES:
             # The E-puck PROTO's first HingeJoint is its left wheel's, the second its right's.
@@ -388,6 +396,19 @@ def _leading(count: int) -> Callable[[Field], tuple[float, ...] | None]:
 def _itself(item: Field) -> Field:
     """Reads a field as it is."""
     return item
+
+
+def _numbers(item: Field) -> tuple[float, ...] | None:
+    """The numbers of a multiple field (``battery [50, 100, 2]``), or None when it holds
+    anything else or nothing."""
+    values = [t.text for t in item.tokens if t.text not in ("[", "]")]
+    if item.nodes or not values:
+        return None
+    try:
+        numbers = tuple(float(v) for v in values)
+    except ValueError:
+        return None
+    return numbers if all(math.isfinite(n) for n in numbers) else None
 
 
 def _sensor_name(node: Node) -> str | None:

@@ -210,12 +210,17 @@ void wb_motor_set_acceleration(WbDeviceTag tag, double acceleration) {
   set_point(tag, 2, COMMAND_SET_ACCELERATION, acceleration, "wb_motor_set_acceleration");
 }
 
-/* Accepted, as the Python Motor accepts it: position control keeps its proportional gain. */
+/* The gains of position control, set by the Python Motor (a call, so that C and Python share
+   Webots' PID). */
 void wb_motor_set_control_pid(WbDeviceTag tag, double p, double i, double d) {
-  (void)p;
-  (void)i;
-  (void)d;
-  link_device(tag, "wb_motor_set_control_pid");
+  if (!link_device(tag, "wb_motor_set_control_pid"))
+    return;
+  call_begin("wb_motor_set_control_pid");
+  call_int(tag);
+  call_double(p);
+  call_double(i);
+  call_double(d);
+  call_end();
 }
 
 static double set_value(WbDeviceTag tag, int index, const char *function) {
