@@ -36,7 +36,7 @@ DEFAULT_MAX_TORQUE = 10.0
 
 def _number(fields: Mapping[str, Any], name: str, default: float) -> float:
     value = fields.get(name, default)
-    return float(value) if isinstance(value, int | float) else default
+    return float(value) if isinstance(value, (int, float)) else default
 
 
 class JointMotor(Motor):
