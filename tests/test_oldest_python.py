@@ -145,3 +145,30 @@ def test_the_bar_check_tells_a_union_of_types_from_other_bars(source: str, caugh
     visitor = _RunTimeUnions()
     visitor.visit(ast.parse(source))
     assert bool(visitor.found) is caught
+
+
+def _core_dependencies(python: str) -> set[str]:
+    """The distributions ``pip install mazesim`` brings on Python ``python`` (``"3.9"``)."""
+    import tomllib
+    from packaging.requirements import Requirement
+
+    project = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))["project"]
+    needed = [Requirement(text) for text in project["dependencies"]]
+    return {
+        each.name
+        for each in needed
+        if each.marker is None or each.marker.evaluate({"python_version": python})
+    }
+
+
+def test_every_python_without_tomllib_gets_the_toml_reader_with_mazesim() -> None:
+    """``mazesim webots run`` and ``mazesim barcode-study`` read TOML (``mazesim._toml``): on
+    Python 3.9 and 3.10 they stopped with "needs 'tomli': pip install tomli" after ``pip
+    install mazesim`` or ``make demo``."""
+    major, oldest = oldest_python()
+    for minor in range(oldest, 14):
+        has_tomllib = (major, minor) >= (3, 11)
+        assert ("tomli" in _core_dependencies(f"{major}.{minor}")) is not has_tomllib, minor
+    makefile = (ROOT / "Makefile").read_text(encoding="utf-8")
+    assert "PY_BEFORE_311 := \"tomli; python_version < '3.11'\"" in makefile
+    assert "$(PY_PACKAGES) $(PY_BEFORE_311)" in makefile
