@@ -11,6 +11,8 @@ STAMP := $(VENV)/.installed
 # What `make demo` needs: maturin, which builds the extension, and mazesim's own dependencies
 # (pyproject's [project] dependencies), installed here so that `maturin develop` finds them.
 PY_PACKAGES := maturin numpy matplotlib pillow tqdm quickjs lupa
+# Python 3.9 and 3.10 read TOML with tomli (pyproject's dependency of the same marker).
+PY_BEFORE_311 := "tomli; python_version < '3.11'"
 # What `make test`, `lint`, `typecheck` and `fmt` need beside (pyproject's extra "dev", plus Ray):
 # installed by `make dev-deps` (a stamp of its own), so `make demo` does not pay for them.
 DEV_PACKAGES := pytest pytest-xdist hypothesis ruff mypy typing_extensions gymnasium ray imageio imageio-ffmpeg \
@@ -71,7 +73,7 @@ $(STAMP): Makefile
 		"python3.X-venv); making it again with $(PYTHON)" >&2; $(PYTHON) -m venv --clear $(VENV); }
 	$(BIN)/python -m pip install --quiet --upgrade pip
 	@echo "make venv: installing $(PY_PACKAGES) into $(VENV) (about 55 MB to download the first time, 225 MB in $(VENV))"
-	@start=$$(date +%s); $(BIN)/python -m pip install --progress-bar on $(PY_PACKAGES) | grep -v '^Requirement already satisfied' || true; \
+	@start=$$(date +%s); $(BIN)/python -m pip install --progress-bar on $(PY_PACKAGES) $(PY_BEFORE_311) | grep -v '^Requirement already satisfied' || true; \
 		echo "make venv: installed in $$(( $$(date +%s) - start )) s"
 	@$(BIN)/python -c 'import maturin, numpy, matplotlib, PIL, tqdm' && touch $@
 

@@ -46,6 +46,18 @@ ABOUT = (
     "'glibc': os.confstr('CS_GNU_LIBC_VERSION'), 'python': platform.python_version(), "
     "'mazesim': mazesim.__file__}))"
 )
+#: Imports every module of the package and prints the ones that fail other than for a missing
+#: optional dependency (a JSON list): a line only a newer Python reads fails here.
+IMPORT_ALL = (
+    "import importlib, json, pkgutil, mazesim; from mazesim.errors import MissingDependencyError; "
+    "names = [m.name for m in pkgutil.walk_packages(mazesim.__path__, 'mazesim.', onerror=id) "
+    "if not m.name.endswith('__main__')]; failed = []\n"
+    "for name in names:\n"
+    "    try: importlib.import_module(name)\n"
+    "    except (ModuleNotFoundError, MissingDependencyError): pass\n"
+    "    except Exception as error: failed.append(f'{name}: {type(error).__name__}: {error}')\n"
+    "print(json.dumps(failed))"
+)
 
 
 def cache_dir() -> Path:
@@ -199,9 +211,13 @@ class Outcome:
     quickstart: str
     evaluation: str
     install_s: float = 0.0
+    #: The modules that failed to import (other than for a missing optional dependency).
+    unimportable: tuple[str, ...] = ()
 
 
-def _outcome(about: str, quickstart: str, evaluation: str, install_s: float) -> Outcome:
+def _outcome(
+    about: str, quickstart: str, evaluation: str, install_s: float, unimportable: str = "[]"
+) -> Outcome:
     facts = json.loads(about)
     return Outcome(
         glibc=facts["glibc"].split()[-1],
@@ -210,6 +226,7 @@ def _outcome(about: str, quickstart: str, evaluation: str, install_s: float) -> 
         quickstart=quickstart,
         evaluation=evaluation.split("\n", 1)[1],
         install_s=install_s,
+        unimportable=tuple(json.loads(unimportable)),
     )
 
 
@@ -228,6 +245,7 @@ def run_in_chroot(
     try:
         shutil.copy(wheel, work)
         shutil.copy(QUICKSTART, work)
+        (work / "import_all.py").write_text(IMPORT_ALL + "\n", encoding="utf-8")
         if quick:
             dependencies = (
                 f"echo {DEPENDENCIES}/lib/python3*/site-packages "
@@ -252,13 +270,14 @@ def run_in_chroot(
             root,
             f'cd {inside} && venv/bin/python -I -c "{ABOUT}" && echo --- '
             f"&& venv/bin/python -I quickstart.py && echo --- "
-            f"&& venv/bin/mazesim {' '.join(EVAL_ARGS)}",
+            f"&& venv/bin/mazesim {' '.join(EVAL_ARGS)} && echo --- "
+            f"&& venv/bin/python -I import_all.py",
             timeout_s,
         )
         if ran.returncode != 0:
             raise RuntimeError(f"mazesim in {suite} failed:\n{ran.stdout}\n{ran.stderr}")
-        about, quickstart, evaluation = ran.stdout.split("---\n")
-        return _outcome(about, quickstart, evaluation, install_s)
+        about, quickstart, evaluation, unimportable = ran.stdout.split("---\n")
+        return _outcome(about, quickstart, evaluation, install_s, unimportable)
     finally:
         shutil.rmtree(work, ignore_errors=True)
 

@@ -100,6 +100,11 @@ _ARRAY_PROTOCOLS = ("_NestedSequence", "_SupportsArray")
 _ARRAY_LIKE = (np.ndarray, np.generic, abc.Sequence, int, float, complex, bool)
 
 
+def _is_typeddict(hint: Any) -> bool:
+    """Whether ``hint`` is a TypedDict class (``typing.is_typeddict``, which Python 3.9 lacks)."""
+    return isinstance(hint, type) and issubclass(hint, dict) and hasattr(hint, "__total__")
+
+
 def is_public_module(name: str) -> bool:
     """Whether the module ``name`` is part of the public surface."""
     parts = name.split(".")
@@ -190,7 +195,7 @@ def _refusal(value: Any, hint: Any) -> str | None:  # noqa: C901, PLR0911, PLR09
         )
     if origin is not None:
         return _container_refusal(value, hint, origin, args)
-    if typing.is_typeddict(hint):  # isinstance refuses a TypedDict: it is read as a mapping
+    if _is_typeddict(hint):  # isinstance refuses a TypedDict: it is read as a mapping
         return _class_refusal(value, abc.Mapping)
     if not isinstance(hint, type):
         return None  # a NewType, a ParamSpec...: not checked
@@ -221,7 +226,7 @@ def _class_refusal(value: Any, hint: type) -> str | None:  # noqa: PLR0911 - one
     if hint is bool:
         ok = isinstance(value, (bool, np.bool_))
     elif hint is int:
-        if isinstance(value, (int, np.integer)) and not isinstance(value, bool | np.bool_):
+        if isinstance(value, (int, np.integer)) and not isinstance(value, (bool, np.bool_)):
             if not SMALLEST_INT <= int(value) <= LARGEST_INT:
                 return f"expected an integer that fits in 64 bits, found {_describe(value)}"
             return None
@@ -623,7 +628,7 @@ class _Parameters:
         hint = self.by_name.get(missing)
         if not (isinstance(hint, type) and hint.__module__.startswith("mazesim")):
             return ""
-        if typing.is_typeddict(hint):  # a TypedDict is any mapping: no value is told as one
+        if _is_typeddict(hint):  # a TypedDict is any mapping: no value is told as one
             return ""
         for (name, _), value in zip(self.positional, args):  # noqa: B905 - extras: TypeError
             if isinstance(value, hint):

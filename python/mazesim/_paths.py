@@ -47,6 +47,7 @@ __all__ = [
     "shell_command",
     "unknown_name_or_file",
     "unknown_robot_profile",
+    "windows_separators",
     "world_files_beside",
     "writing_alone",
 ]
@@ -162,7 +163,7 @@ def unknown_name_or_file(
             )
         elif not os.path.isabs(path):  # a relative path: say where it was looked for
             found = f"{found}{where}"
-        found += _windows_separators(path, base)
+        found += windows_separators(path, base)
     opening = f"no {kind} file {path!r}: " if is_path else f"no built-in {kind} named {path!r} and "
     opening = context + opening
     unknown = UnknownNameError(
@@ -213,20 +214,23 @@ def _where_missing(path: str) -> str:
     names = world_files_beside(path, (suffix,))  # "" (no suffix): every file
     meant = _closest_name(path, names)
     looked = f"the folder {folder!r}{where}" if folder else os.getcwd()
-    windows = _windows_separators(path, os.getcwd())
+    windows = windows_separators(path, os.getcwd())
     if windows:
         return f": there is no {file!r} in {looked}{windows}"
     return f": there is no {file!r} in {looked}" + (f"; did you mean {meant!r}?" if meant else "")
 
 
-def _windows_separators(path: str, base: str) -> str:
-    """What to add to a "no such file" message for a path written with Windows' backslashes
+def windows_separators(path: str, base: str, *, written: bool = False) -> str:
+    """What to add to a message about a path written with Windows' backslashes
     (``maps\\maze.toml``), which name no folder here: that folders are separated by '/', and
-    the path so written when that file exists. Empty for any other path."""
+    the path so written when that file exists (``written``: when the folder it would be
+    written into exists). Empty for any other path."""
     if "\\" not in path or os.sep == "\\":
         return ""
     meant = path.replace("\\", "/")
-    there = os.path.exists(os.path.join(base, meant))
+    there = os.path.exists(
+        os.path.join(base, (os.path.dirname(meant) or ".") if written else meant)
+    )
     return "; folders are separated by '/' here, not by '\\' as on Windows" + (
         f": did you mean {meant!r}?" if there else ""
     )
@@ -445,9 +449,15 @@ def output_files(
 
 def output_path(text: str) -> str:
     """A path to write to, as a command-line argument type: not empty (an empty path would
-    quietly mean the current folder) and without NUL characters."""
+    quietly mean the current folder), without NUL characters, and without Windows' backslashes
+    between folders (``-o out\\maze.png`` would write a file of that name beside ``out/``)."""
     if not text or "\0" in text:
         raise argparse.ArgumentTypeError(f"expected a path to write to, found {_shown(text)}")
+    windows = windows_separators(text, os.getcwd(), written=True)
+    if windows:
+        raise argparse.ArgumentTypeError(
+            f"expected a path to write to, found {_shown(text)}{windows}"
+        )
     return text
 
 

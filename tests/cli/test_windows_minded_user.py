@@ -4,6 +4,7 @@ UTF-16, Latin-1), and paths written with Windows' backslashes."""
 
 from __future__ import annotations
 
+import argparse
 import codecs
 import shlex
 from pathlib import Path
@@ -11,7 +12,7 @@ from pathlib import Path
 import pytest
 
 import mazesim
-from mazesim.cli import main
+from mazesim.cli import build_parser, main
 from mazesim.distributed.config import load_sweep_config
 from mazesim.webots.keyboard import read_keys
 
@@ -152,3 +153,81 @@ def test_a_missing_controller_written_with_backslashes_gets_the_path_meant(
     error = capsys.readouterr().err
     assert "folders are separated by '/' here, not by '\\' as on Windows" in error
     assert error.rstrip().endswith("/controllers/wander.py'?")
+
+
+#: What a command-line option that names a file or folder to write is called.
+WRITTEN = {"out", "html", "video", "record", "trace", "plot"}
+
+
+def _written_options() -> list[tuple[str, str, argparse.Action]]:
+    """(command, option, action) of every option of every command that names what it writes."""
+    found = []
+
+    def walk(parser: argparse.ArgumentParser) -> None:
+        for action in parser._actions:
+            if isinstance(action, argparse._SubParsersAction):
+                for chosen in dict.fromkeys(action.choices.values()):
+                    walk(chosen)
+            elif action.option_strings and action.dest in WRITTEN:
+                found.append((parser.prog, action.option_strings[-1], action))
+
+    walk(build_parser())
+    return found
+
+
+def test_every_option_that_names_what_is_written_refuses_windows_backslashes() -> None:
+    """One door, :func:`mazesim._paths.output_path`, which every written path's type passes:
+    ``-o out\\maze.png`` would write a file of that name beside the folder ``out``."""
+    options = _written_options()
+    assert {("mazesim train", "--out"), ("mazesim show", "--out"), ("mazesim demo", "--html")} <= {
+        (command, option) for command, option, _ in options
+    }
+    for command, option, action in options:
+        if action.type is None:  # read as text, then checked as a written file when it runs
+            assert (command, option) == ("mazesim worlds", "--out")
+            continue
+        with pytest.raises(argparse.ArgumentTypeError) as refused:
+            action.type("results\\run.mp4")
+        assert "folders are separated by '/' here" in str(refused.value), (command, option)
+
+
+@pytest.mark.parametrize(
+    "arguments",
+    [
+        ["show", "maps/maze.toml", "-o", "out\\maze.png"],
+        ["worlds", "--export", "seed-maze", "--out", "out\\maze.toml"],
+    ],
+)
+def test_a_file_to_write_named_with_backslashes_is_refused_naming_the_path_meant(
+    tmp_path: Path,
+    capsys: pytest.CaptureFixture[str],
+    monkeypatch: pytest.MonkeyPatch,
+    arguments: list[str],
+) -> None:
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "maps").mkdir()
+    (tmp_path / "out").mkdir()
+    mazesim.generate_maze(3, 3, seed=1).save("maps/maze.toml")
+    assert main(arguments) == 2
+    error = capsys.readouterr().err
+    meant = arguments[-1].replace("\\", "/")
+    assert (
+        f"folders are separated by '/' here, not by '\\' as on Windows: did you mean {meant!r}?"
+        in error
+    )
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["maps", "out"]  # nothing written
+    assert not any((tmp_path / "out").iterdir())
+
+
+def test_a_navigator_folder_written_with_backslashes_gets_the_path_meant(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """The navigator's folder says it as world files and controllers do."""
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "runs" / "navigator").mkdir(parents=True)
+    assert main(["eval", "--policy", "runs\\navigator", "--episodes", "1"]) == 2
+    error = capsys.readouterr().err
+    assert "folders are separated by '/' here, not by '\\' as on Windows" in error
+    assert "did you mean 'runs/navigator'?" in error
+    with pytest.raises(mazesim.MazesimError, match="did you mean 'runs/navigator'"):
+        mazesim.learn.load_policy("runs\\navigator")

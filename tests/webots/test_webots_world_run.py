@@ -87,6 +87,26 @@ def test_controllers_are_found_in_the_project_or_given() -> None:
     assert none is None and why == "no controller"
 
 
+def test_a_controller_field_with_a_typo_is_told_the_project_controller_meant(
+    tmp_path: Path,
+) -> None:
+    """A world's ``controller "wandr"`` beside ``controllers/wander/``: the robot stands still,
+    and the note names the controller folder meant, as a mistyped file on the command line is."""
+    world = tmp_path / "worlds" / "w.wbt"
+    world.parent.mkdir()
+    world.write_text("#VRML_SIM R2023b utf8\n")
+    for name in ("wander", "follow_line"):
+        (tmp_path / "controllers" / name).mkdir(parents=True)
+        (tmp_path / "controllers" / name / f"{name}.py").write_text("pass\n")
+    none, why = controller_of({"name": "e-puck", "controller": "wandr"}, str(world), {})
+    assert none is None
+    assert why == (
+        "no controller controllers/wandr/wandr.py, .c, .cpp, .cc, .cxx (did you mean 'wander'?)"
+    )
+    _, far = controller_of({"name": "e-puck", "controller": "gripper"}, str(world), {})
+    assert far == "no controller controllers/gripper/gripper.py, .c, .cpp, .cc, .cxx"
+
+
 def test_a_robot_whose_controller_is_java_or_matlab_says_so(tmp_path: Path) -> None:
     """Webots' MATLAB and Java example worlds: a robot whose controller folder holds only a
     MATLAB or Java file stands still, and its note names the language, as a run of that

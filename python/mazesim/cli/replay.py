@@ -11,7 +11,7 @@ import sys
 from pathlib import Path
 from typing import Any, TextIO
 
-from mazesim._paths import refuse_overwriting_inputs
+from mazesim._paths import output_file, refuse_overwriting_inputs
 from mazesim.cli._help import examples
 from mazesim.cli.progress import add_progress_option, progress_display
 from mazesim.errors import InvalidArgumentError, _shown
@@ -40,6 +40,7 @@ def register(commands: Any) -> None:
         "-o",
         "--out",
         required=True,
+        type=output_file,
         metavar="FILE",
         help="the page or video to write: FILE.html, FILE.mp4 or FILE.gif",
     )

@@ -62,7 +62,12 @@ import numpy as np
 import numpy.typing as npt
 
 from mazesim._atomic import atomic_file, remove_stale_temporaries
-from mazesim._paths import file_described, make_output_folder, read_input
+from mazesim._paths import (
+    file_described,
+    make_output_folder,
+    read_input,
+    windows_separators,
+)
 from mazesim.actions import ACTION_CODES, WHEEL_SPEED_FRACTIONS
 from mazesim.errors import (
     InvalidArgumentError,
@@ -726,10 +731,11 @@ def load_policy(folder: str | os.PathLike[str] | None = None) -> TrainedPolicy:
     if not path.exists():
         where = "" if path.is_absolute() else f" in {os.getcwd()}"
         shipped = ", ".join(repr(name) for name in SHIPPED_NAVIGATORS)
-        meant = _closest_navigator(path)
+        windows = windows_separators(str(path), os.getcwd())
+        meant = None if windows else _closest_navigator(path)
         raise PolicyFormatError(
-            f"{meta_path}: no such file: there is no folder {_shown(str(path))}{where}; a "
-            "navigator is "
+            f"{meta_path}: no such file: there is no folder {_shown(str(path))}{where}"
+            f"{windows}; a navigator is "
             f"the folder 'mazesim train --out DIR' writes, or a shipped one ({shipped}; without "
             "--policy, the seed-maze navigator)"
             + (f"; did you mean {_shown(meant)}?" if meant else "")

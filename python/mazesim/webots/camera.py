@@ -23,7 +23,7 @@ import os
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from numbers import Integral
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -428,7 +428,7 @@ def _robot_hits(
 
 
 #: What a camera samples: the robot's pose, the other robots and the movable bodies.
-_Sample = tuple[tuple[float, float, float], list[RobotBody], list[Ball | Block]]
+_Sample = tuple[tuple[float, float, float], list[RobotBody], list[Union[Ball, Block]]]
 
 
 def drawn_body(pose: Sequence[float], body: Mapping[str, Any]) -> Ball | Block:

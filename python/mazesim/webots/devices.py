@@ -265,7 +265,7 @@ def _names_its_device(device: Any, args: tuple[Any, ...], kwargs: dict[str, Any]
     return (
         len(args) == 1
         and not kwargs
-        and isinstance(args[0], str | int)
+        and isinstance(args[0], (str, int))
         and not _internal(type(device))
         and "_simulation" not in vars(device)
     )
@@ -307,7 +307,7 @@ class _DeviceType(type):
 
     def __call__(cls, *args: Any, **kwargs: Any) -> Any:
         subclass = not _internal(cls)
-        named = bool(args) and isinstance(args[0], str | int)
+        named = bool(args) and isinstance(args[0], (str, int))
         if (named and len(args) == 1 and not kwargs) or (subclass and named):
             device = _robot_device(cls, args[0])
             if device is None or not subclass or isinstance(device, cls):

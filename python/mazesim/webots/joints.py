@@ -37,7 +37,7 @@ DEFAULT_MAX_TORQUE = 10.0
 
 def _number(fields: Mapping[str, Any], name: str, default: float) -> float:
     value = fields.get(name, default)
-    return float(value) if isinstance(value, int | float) else default
+    return float(value) if isinstance(value, (int, float)) else default
 
 
 def _gains(fields: Mapping[str, Any]) -> tuple[float, float, float]:

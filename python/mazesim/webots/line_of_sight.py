@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Mapping, Sequence
-from typing import Any
+from typing import Any, Optional, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -75,7 +75,8 @@ def moved_walls(
 
 
 #: The robots' body radii by index (None: no body of its own), or what gives them now.
-Radii = Sequence[float | None] | Callable[[], Sequence[float | None]]
+# Union and Optional, not `|`: an alias is evaluated at import, and Python 3.9 has no `|` of types.
+Radii = Union[Sequence[Optional[float]], Callable[[], Sequence[Optional[float]]]]
 
 
 class LineOfSight:

@@ -52,7 +52,7 @@ import numpy as np
 
 from mazesim._core import RobotProfile, Simulator, World
 from mazesim._toml import dump_toml, load_toml
-from mazesim.errors import ControllerBuildError, MazesimIOError, WorldFormatError
+from mazesim.errors import ControllerBuildError, MazesimIOError, WorldFormatError, _closest_name
 from mazesim.webots.controller_process import (
     ControllerJob,
     answer,
@@ -638,7 +638,21 @@ def controller_of(
         return stock, ""
     return None, _other_language(name, world_path) or (
         f"no controller controllers/{name}/{name}{', '.join(CONTROLLER_SUFFIXES)}"
+        + _controller_meant(name, world_path)
     )
+
+
+def _controller_meant(name: str, world_path: str) -> str:
+    """ "; did you mean 'NAME'?" naming the project's controller folder closest to ``name`` (a
+    typo in a world's ``controller`` field), or ""."""
+    folder = os.path.dirname(os.path.abspath(world_path))
+    names = []
+    for project in (os.path.dirname(folder), folder):
+        with contextlib.suppress(OSError):
+            controllers = os.path.join(project, "controllers")
+            names += [n for n in sorted(os.listdir(controllers))[:1000] if n != name]
+    meant = _closest_name(name, names)
+    return f" (did you mean {meant!r}?)" if meant else ""
 
 
 def _other_language(name: str, world_path: str) -> str:

@@ -19,12 +19,10 @@ height in Z-up ones as for ``Wall``, ``bottomWallHeight`` 0.7 m).
 
 from __future__ import annotations
 
-from typing import TypeAlias
-
 __all__ = ["ARMCHAIR", "DESK", "SOFA", "WINDOW", "WOODEN_CHAIR"]
 
 #: Posts (their horizontal positions) and the size of each, in a file's own axes.
-_Posts: TypeAlias = tuple[list[tuple[float, float]], tuple[float, float, float]]
+_Posts = tuple[list[tuple[float, float]], tuple[float, float, float]]
 
 
 def _posts(name: str, label: str, extra_fields: str, z_up: _Posts, y_up: _Posts) -> str:
