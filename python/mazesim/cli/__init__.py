@@ -19,7 +19,7 @@ from typing import Any, NoReturn
 import mazesim
 from mazesim._error_tree import io_error
 from mazesim.cli._help import CommandParser, examples
-from mazesim.errors import MazesimError, _closest_name, _command_line
+from mazesim.errors import MazesimError, _closest_name, _command_line, _shown
 
 __all__ = ["COMMANDS", "build_parser", "main"]
 
@@ -148,7 +148,7 @@ def _built_in_meant(words: list[str]) -> list[str]:
         closest = _closest_name(word, list(BUILT_IN_CONTROLLERS), 0.8)
         if closest is not None:
             meant.append(
-                f"did you mean the built-in controller {closest!r}? it runs in "
+                f"did you mean the built-in controller {_shown(closest)}? it runs in "
                 f"{BUILT_IN_CONTROLLERS[closest]}"
             )
     return meant
@@ -178,7 +178,7 @@ def _refuse_unknown(
     # one of this command's is named as another command's (`demo --policy`).
     closest_of = {word: _closest_name(word.lstrip("-"), list(options), 0.8) for word in typed}
     meant = [
-        f"{options[closest]!r} for {word!r}"
+        f"{_shown(options[closest])} for {_shown(word)}"
         for word, closest in closest_of.items()
         if closest is not None
     ]
@@ -195,7 +195,7 @@ def _refuse_unknown(
         for name in [str(action.dest), *str(action.metavar or "").lower().split("|")]
     }
     given = [
-        f"{positional[name]} is given without {word!r}: {parser.prog} {positional[name]}"
+        f"{positional[name]} is given without {_shown(word)}: {parser.prog} {positional[name]}"
         for word in typed
         if (name := word.lstrip("-").replace("-", "_")) in positional
     ]
@@ -282,7 +282,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     if with_nul:
         word = str(arguments[with_nul[0]])
         print(
-            f"mazesim: error: argument {with_nul[0] + 1} ({word[:40]!r}) "
+            f"mazesim: error: argument {with_nul[0] + 1} ({_shown(word[:40])}) "
             "holds a NUL character, which no file name or value has; remove it",
             file=sys.stderr,
         )
@@ -376,6 +376,6 @@ def _missing_package(error: BaseException) -> str | None:
         return None
     package = _PIP_NAMES.get(module, module)
     return (
-        f"this command needs the Python package {package!r}, which is not installed for "
+        f"this command needs the Python package {_shown(package)}, which is not installed for "
         f"{sys.executable}: install it with {sys.executable} -m pip install {package}"
     )

@@ -52,7 +52,7 @@ import numpy as np
 
 from mazesim._core import RobotProfile, Simulator, World
 from mazesim._toml import dump_toml, load_toml
-from mazesim.errors import ControllerBuildError, MazesimIOError, WorldFormatError
+from mazesim.errors import ControllerBuildError, MazesimIOError, WorldFormatError, _shown
 from mazesim.webots.controller_process import (
     ControllerJob,
     answer,
@@ -893,7 +893,7 @@ def _own_profiles(
         own = own_sensors(robot_profile_name({"robot_profile": robot.get("profile")}), scene)
         label = robot_label(robot)
         for warning in own.warnings:
-            print(f"mazesim: warning: robot {label!r}: {warning}", file=sys.stderr)
+            print(f"mazesim: warning: robot {_shown(label)}: {warning}", file=sys.stderr)
         if own.profile is not None:
             profiles[index] = own.profile
     return profiles
@@ -1237,7 +1237,7 @@ class _Pipes:
                 run.exit_status = run.exit_status or 1
                 run.error = "the controller's process ended without a report\n"
                 # Its own process did not say so, as it says a controller's traceback.
-                sys.stderr.write(f"mazesim: robot {run.name!r}: {run.error}")
+                sys.stderr.write(f"mazesim: robot {_shown(run.name)}: {run.error}")
             return
         if message[0] == "call":
             self._answer(ready, index, message)
