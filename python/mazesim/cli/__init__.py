@@ -9,11 +9,12 @@ printed as one line, ``mazesim: error: <message>``, with exit code 2.
 from __future__ import annotations
 
 import argparse
+import contextlib
 import importlib
 import os
 import stat
 import sys
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from typing import Any, NoReturn
 
 import mazesim
@@ -265,6 +266,51 @@ def _printable_output() -> None:
             reconfigure(errors="backslashreplace")
 
 
+class _NamedOutput:
+    """The standard output while a command runs: a write or flush that fails names it (the
+    system names no file for it: "No space left on device" alone, under ``> /dev/full``).
+    Everything else is the stream's own."""
+
+    def __init__(self, stream: Any) -> None:
+        self._stream = stream
+
+    def __getattr__(self, name: str) -> Any:
+        return getattr(self._stream, name)
+
+    def write(self, text: str) -> int:
+        try:
+            return int(self._stream.write(text))
+        except OSError as error:
+            raise _named(error) from None
+
+    def writelines(self, lines: Any) -> None:
+        for line in lines:
+            self.write(line)
+
+    def flush(self) -> None:
+        try:
+            self._stream.flush()
+        except OSError as error:
+            raise _named(error) from None
+
+
+def _named(error: OSError) -> OSError:
+    if error.filename is None and not isinstance(error, BrokenPipeError):
+        error.filename = "the standard output"
+    return error
+
+
+@contextlib.contextmanager
+def _named_output() -> Iterator[None]:
+    """Makes ``sys.stdout`` a :class:`_NamedOutput` while the block runs, as it was after."""
+    before = sys.stdout
+    sys.stdout = _NamedOutput(before) if before is not None else before  # type: ignore[assignment]
+    try:
+        yield
+    finally:
+        sys.stdout = before
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Runs the ``mazesim`` command.
 
@@ -316,7 +362,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     if command == "ros2":
         args.ros_arguments = ros_arguments
     try:
-        with _command_line():  # messages name the options (--out), not Python's parameters
+        # Messages name the options (--out), not Python's parameters, and the standard output.
+        with _command_line(), _named_output():
             return int(args.run(args))
     except BrokenPipeError as error:
         if not _stdout_is_a_pipe():
