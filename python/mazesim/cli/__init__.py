@@ -304,7 +304,7 @@ def _named(error: OSError) -> OSError:
 def _named_output() -> Iterator[None]:
     """Makes ``sys.stdout`` a :class:`_NamedOutput` while the block runs, as it was after."""
     before = sys.stdout
-    sys.stdout = _NamedOutput(before) if before is not None else before  # type: ignore[assignment]
+    sys.stdout = _NamedOutput(before) if before is not None else before
     try:
         yield
     finally:
