@@ -150,22 +150,32 @@ def test_an_env_s_world_sampler_typed_at_the_prompt_raises_its_own_exception() -
     assert not isinstance(caught.value, mazesim.MazesimError)
 
 
-def test_every_raise_of_the_package_quotes_a_repr_through_shown() -> None:
+def test_every_message_of_the_package_quotes_a_repr_through_shown() -> None:
     """A message of the package quotes a value's repr with ``_shown`` (about 200 characters),
     never with ``{value!r}``, which quoted a text of a million characters whole, up to the
-    4,000 characters every message is cut to."""
+    4,000 characters every message is cut to. Not only in a ``raise``: a helper that builds a
+    message for a raise elsewhere (a missing file's "did you mean"), a warning printed, an
+    assertion's text. A ``__repr__`` is no message; a text that must read back (a spec written
+    inline) calls ``repr()`` by name."""
     import ast
 
     package = Path(mazesim.__file__).parent
     found = []
     for file in sorted(package.rglob("*.py")):
-        for node in ast.walk(ast.parse(file.read_text(encoding="utf-8"))):
-            if isinstance(node, ast.Raise) and node.exc is not None:
-                found += [
-                    f"{file.relative_to(package)}:{sub.lineno}"
-                    for sub in ast.walk(node.exc)
-                    if isinstance(sub, ast.FormattedValue) and sub.conversion == ord("r")
-                ]
+        tree = ast.parse(file.read_text(encoding="utf-8"))
+        representations = {
+            id(sub)
+            for node in ast.walk(tree)
+            if isinstance(node, ast.FunctionDef) and node.name == "__repr__"
+            for sub in ast.walk(node)
+        }
+        found += [
+            f"{file.relative_to(package)}:{node.lineno}"
+            for node in ast.walk(tree)
+            if isinstance(node, ast.FormattedValue)
+            and node.conversion == ord("r")
+            and id(node) not in representations
+        ]
     assert found == [], found
 
 

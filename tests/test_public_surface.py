@@ -289,6 +289,21 @@ def test_every_checked_function_is_in_the_registry() -> None:
     assert not missing, f"checked but never walked: {missing}"
 
 
+def test_only_the_one_marker_marks_a_function_as_checked() -> None:
+    """A hot path leaves the surface's check through ``_hot_paths.checks_own_arguments``, whose
+    thin wrapper still turns a call of the wrong arity into a MazesimError: a module's own marker
+    (setting the attribute by hand, as the camera's pixel accessors once did) let Python's bare
+    TypeError through. The marker's name is written in ``_hot_paths.py`` alone."""
+    package = Path(mazesim.__file__).parent
+    marker = "_".join(("", "", "mazesim", "checked", "", ""))
+    marking = [
+        str(path.relative_to(package))
+        for path in package.rglob("*.py")
+        if path.name != "_hot_paths.py" and marker in path.read_text("utf-8")
+    ]
+    assert not marking, f"mark hot paths with mazesim._hot_paths.checks_own_arguments: {marking}"
+
+
 def test_the_registry_finds_the_whole_surface() -> None:
     paths = {e.path for e in entry_points()}
     for expected in (

@@ -52,6 +52,7 @@ import numpy as np
 
 from mazesim._callers import STATE
 from mazesim._error_tree import in_the_tree
+from mazesim._hot_paths import is_checked, mark_checked
 from mazesim._sizes import MOST_ENVS, size_of
 from mazesim.errors import (
     InvalidArgumentError,
@@ -69,7 +70,6 @@ __all__ = [
     "SAMPLED_ITEMS",
     "annotations_of",
     "checked",
-    "checks_own_arguments",
     "guard_module",
     "install",
     "is_public_module",
@@ -692,7 +692,7 @@ def checked(func: Callable[..., Any], *, method: bool = False) -> Callable[..., 
     """``func`` with its arguments checked against its annotations before each call (``method``:
     its first parameter, ``self`` or ``cls``, is not checked). The wrapper runs in ``func``'s
     module's globals, so doctest and ``inspect`` see it as that module's function."""
-    if getattr(func, "__mazesim_checked__", False):
+    if is_checked(func):
         return func
     parameters = _Parameters(func, method)
     # The wrapper runs in func's globals: everything it uses is bound here.
@@ -760,31 +760,7 @@ def checked(func: Callable[..., Any], *, method: bool = False) -> Callable[..., 
     made = types.FunctionType(code, home, func.__name__, None, wrapper.__closure__)
     functools.update_wrapper(made, func)
     made.__kwdefaults__ = None
-    made.__mazesim_checked__ = True  # type: ignore[attr-defined]
-    return made
-
-
-def checks_own_arguments(func: Callable[..., Any]) -> Callable[..., Any]:
-    """Marks ``func`` as a per-step hot path that checks its own arguments (an env's ``step``
-    refuses a bad action itself): the surface's check leaves it out, so a step pays nothing for
-    it. Only a call with the wrong number of arguments (refused by Python before ``func`` runs,
-    with a ``TypeError``) is turned into :class:`~mazesim.errors.InvalidArgumentError`, by a thin
-    wrapper that does nothing else. The public-surface registry still feeds it hostile
-    arguments."""
-    error = InvalidArgumentError
-
-    def wrapper(*args: Any, **kwargs: Any) -> Any:
-        try:
-            return func(*args, **kwargs)
-        except TypeError as failure:
-            trace = failure.__traceback__
-            if trace is not None and trace.tb_next is None:  # raised by the call itself
-                raise error(f"{func.__qualname__}: {failure}") from None
-            raise
-
-    functools.update_wrapper(wrapper, func)
-    wrapper.__mazesim_checked__ = True  # type: ignore[attr-defined]
-    return wrapper
+    return mark_checked(made)
 
 
 def _refuse_any_argument(cls: type) -> Callable[..., None]:

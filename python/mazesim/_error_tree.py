@@ -125,12 +125,13 @@ def _quoted(error: BaseException) -> str:
 def io_error(error: OSError, where: str = "") -> MazesimIOError:
     """``error`` as a :class:`~mazesim.errors.MazesimIOError` whose message is the file and the
     system's reason ("/dev/null: File exists", not "[Errno 17] File exists: '/dev/null'"), or
-    ``where`` and the reason when the system named no file; itself if it is one already."""
+    ``where`` and the reason when the system named no file (the reason alone without either);
+    itself if it is one already."""
     if isinstance(error, MazesimIOError):
         return error
     name = error.filename if error.filename is not None else where
     reason = error.strerror or _quoted(error)
-    made = made_as(MazesimIOError, type(error), f"{name}: {reason}")
+    made = made_as(MazesimIOError, type(error), f"{name}: {reason}" if name else reason)
     made.errno, made.strerror, made.filename = error.errno, reason, error.filename
     return made
 

@@ -156,15 +156,19 @@ def unknown_name_or_file(
         found = unreadable.strerror.lower() if unreadable.strerror else "no such file"
         if unreadable.errno == errno.ENOENT and is_path:
             found = (
-                f"there is no folder {folder!r}{where}"
+                f"there is no folder {_shown(folder)}{where}"
                 if folder and not os.path.isdir(os.path.join(base, folder))
-                else f"there is no file {file!r} in "
-                + (f"the folder {folder!r}{where}" if folder else base)
+                else f"there is no file {_shown(file)} in "
+                + (f"the folder {_shown(folder)}{where}" if folder else base)
             )
         elif not os.path.isabs(path):  # a relative path: say where it was looked for
             found = f"{found}{where}"
         found += windows_separators(path, base)
-    opening = f"no {kind} file {path!r}: " if is_path else f"no built-in {kind} named {path!r} and "
+    opening = (
+        f"no {kind} file {_shown(path)}: "
+        if is_path
+        else f"no built-in {kind} named {_shown(path)} and "
+    )
     opening = context + opening
     unknown = UnknownNameError(
         f"{opening}{found}; built-in {kind}s: {', '.join(available)} (or a path to {files})",
@@ -209,15 +213,17 @@ def _where_missing(path: str) -> str:
     folder, file = os.path.split(path)
     where = "" if os.path.isabs(path) else f" in {os.getcwd()}"
     if folder and not os.path.isdir(folder):
-        return f": there is no folder {folder!r}{where}"
+        return f": there is no folder {_shown(folder)}{where}"
     suffix = os.path.splitext(file)[1].lower()
     names = world_files_beside(path, (suffix,))  # "" (no suffix): every file
     meant = _closest_name(path, names)
-    looked = f"the folder {folder!r}{where}" if folder else os.getcwd()
+    looked = f"the folder {_shown(folder)}{where}" if folder else os.getcwd()
     windows = windows_separators(path, os.getcwd())
     if windows:
-        return f": there is no {file!r} in {looked}{windows}"
-    return f": there is no {file!r} in {looked}" + (f"; did you mean {meant!r}?" if meant else "")
+        return f": there is no {_shown(file)} in {looked}{windows}"
+    return f": there is no {_shown(file)} in {looked}" + (
+        f"; did you mean {_shown(meant)}?" if meant else ""
+    )
 
 
 def windows_separators(path: str, base: str, *, written: bool = False) -> str:
@@ -232,7 +238,7 @@ def windows_separators(path: str, base: str, *, written: bool = False) -> str:
         os.path.join(base, (os.path.dirname(meant) or ".") if written else meant)
     )
     return "; folders are separated by '/' here, not by '\\' as on Windows" + (
-        f": did you mean {meant!r}?" if there else ""
+        f": did you mean {_shown(meant)}?" if there else ""
     )
 
 

@@ -31,8 +31,8 @@ from typing import Union
 import numpy as np
 import numpy.typing as npt
 
-from mazesim._checks import checks_own_arguments
 from mazesim._core import BatchSimulator, RobotProfile, World
+from mazesim._hot_paths import checks_own_arguments
 from mazesim._sizes import MOST_ENVS, bounded_array, bounded_list
 from mazesim.actions import WHEEL_SPEED_FRACTIONS
 from mazesim.errors import InvalidArgumentError

@@ -167,7 +167,7 @@ class UnknownNameError(MazesimError, LookupError, ValueError):
     ) -> None:
         self.suggestion = _closest_name(name, [*(available or []), *(nearby or [])])
         if self.suggestion is not None:
-            message = f"{message}; did you mean {self.suggestion!r}?"
+            message = f"{message}; did you mean {_shown(self.suggestion)}?"
         super().__init__(message)
         self.available = available
 

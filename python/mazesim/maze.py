@@ -210,7 +210,7 @@ def refuse_blocked_start(world: World, name: str, robot: str | RobotProfile = "e
 def world_source(world: World, name: str) -> str:
     """The world and where it was loaded from, for messages: ``seed-maze`` for a built-in
     world, ``'my-maze' (worlds/my-maze.toml)`` for a file."""
-    return name if name == world.name else f"{world.name!r} ({name})"
+    return name if name == world.name else f"{_shown(world.name)} ({name})"
 
 
 #: The characters of a ``[grid]`` map: corners, walls, open sides, start and goal.

@@ -607,3 +607,25 @@ def test_a_nul_character_in_any_argument_is_one_clear_line(
     assert "NUL character" in err
     assert "internal error" not in err
     assert len(err.strip().splitlines()) == 1
+
+
+def test_a_standard_output_that_cannot_be_written_is_named_in_the_error() -> None:
+    """``mazesim worlds > /dev/full``: exit 2 and one line naming the standard output (the
+    system names no file for it, and the line read ": No space left on device")."""
+    with open("/dev/full", "w") as full:
+        done = subprocess.run(
+            [sys.executable, "-m", "mazesim", "worlds"],
+            stdout=full,
+            stderr=subprocess.PIPE,
+            text=True,
+            timeout=120,
+        )
+    assert done.returncode == 2, done.stderr
+    assert done.stderr.strip() == "mazesim: error: the standard output: No space left on device"
+
+
+def test_an_io_error_that_names_no_file_is_its_reason_alone() -> None:
+    from mazesim._error_tree import io_error
+
+    assert str(io_error(OSError(28, "No space left on device"))) == "No space left on device"
+    assert str(io_error(OSError(28, "No space left on device"), "w.toml")).startswith("w.toml: ")

@@ -160,6 +160,10 @@ def test_the_per_pixel_accessors_refuse_a_pixel_outside_the_image() -> None:
     for bad in ((image, True, 0, 0), (image, width, 1.0, 0), ("image", width, 0, 0)):
         with pytest.raises(TypeError, match=r"Camera\.imageGetBlue: expected"):
             controller.Camera.imageGetBlue(*bad)
+    # A call of the wrong arity is the package's refusal too, not Python's bare TypeError.
+    for arguments in ((image, width, 0), (image, width, 0, 0, 0)):
+        with pytest.raises(InvalidArgumentError, match=r"Camera\.imageGetGray"):
+            controller.Camera.imageGetGray(*arguments)
 
 
 def test_a_camera_slower_than_the_step_is_black_until_its_first_image() -> None:

@@ -128,6 +128,18 @@ fn other_encoding(bytes: &[u8], at: usize) -> String {
     }
 }
 
+/// The text a TOML reader parses: CRLF line ends read as LF, since TOML takes either as a
+/// newline and the `toml` crate kept the CR inside a multi-line string (a world saved by a
+/// Windows editor held a grid map with a CR on every row, unequal to the same map with LF, and
+/// saved those CRs back). Lines and columns are unchanged, so errors point where they did.
+pub fn toml_text(text: &str) -> std::borrow::Cow<'_, str> {
+    if text.contains("\r\n") {
+        std::borrow::Cow::Owned(text.replace("\r\n", "\n"))
+    } else {
+        std::borrow::Cow::Borrowed(text)
+    }
+}
+
 /// Refuses a text given in memory (not read from a file) longer than the bound of the file it
 /// stands for, before it is parsed: a parser's memory is a multiple of its input, and a text of a
 /// few hundred MB made it ask for more than the process may have (an abort, not an error).
@@ -280,6 +292,18 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_toml_text_reads_crlf_line_ends_as_lf() {
+        let windows = "map = \"\"\"\r\n+--+\r\n|  |\r\n\"\"\"\r\n";
+        assert_eq!(toml_text(windows), "map = \"\"\"\n+--+\n|  |\n\"\"\"\n");
+        assert!(matches!(
+            toml_text("a = 1\n"),
+            std::borrow::Cow::Borrowed(_)
+        ));
+        // A lone CR is no line end of TOML's: left for the parser to refuse.
+        assert_eq!(toml_text("a = 1\rb = 2"), "a = 1\rb = 2");
+    }
 
     #[test]
     fn a_text_longer_than_its_files_bound_is_refused_saying_both_lengths() {

@@ -9,17 +9,18 @@ printed as one line, ``mazesim: error: <message>``, with exit code 2.
 from __future__ import annotations
 
 import argparse
+import contextlib
 import importlib
 import os
 import stat
 import sys
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from typing import Any, NoReturn
 
 import mazesim
 from mazesim._error_tree import io_error
 from mazesim.cli._help import CommandParser, examples
-from mazesim.errors import MazesimError, _closest_name, _command_line
+from mazesim.errors import MazesimError, _closest_name, _command_line, _shown
 
 __all__ = ["COMMANDS", "build_parser", "main"]
 
@@ -148,7 +149,7 @@ def _built_in_meant(words: list[str]) -> list[str]:
         closest = _closest_name(word, list(BUILT_IN_CONTROLLERS), 0.8)
         if closest is not None:
             meant.append(
-                f"did you mean the built-in controller {closest!r}? it runs in "
+                f"did you mean the built-in controller {_shown(closest)}? it runs in "
                 f"{BUILT_IN_CONTROLLERS[closest]}"
             )
     return meant
@@ -178,7 +179,7 @@ def _refuse_unknown(
     # one of this command's is named as another command's (`demo --policy`).
     closest_of = {word: _closest_name(word.lstrip("-"), list(options), 0.8) for word in typed}
     meant = [
-        f"{options[closest]!r} for {word!r}"
+        f"{_shown(options[closest])} for {_shown(word)}"
         for word, closest in closest_of.items()
         if closest is not None
     ]
@@ -195,7 +196,7 @@ def _refuse_unknown(
         for name in [str(action.dest), *str(action.metavar or "").lower().split("|")]
     }
     given = [
-        f"{positional[name]} is given without {word!r}: {parser.prog} {positional[name]}"
+        f"{positional[name]} is given without {_shown(word)}: {parser.prog} {positional[name]}"
         for word in typed
         if (name := word.lstrip("-").replace("-", "_")) in positional
     ]
@@ -265,6 +266,51 @@ def _printable_output() -> None:
             reconfigure(errors="backslashreplace")
 
 
+class _NamedOutput:
+    """The standard output while a command runs: a write or flush that fails names it (the
+    system names no file for it: "No space left on device" alone, under ``> /dev/full``).
+    Everything else is the stream's own."""
+
+    def __init__(self, stream: Any) -> None:
+        self._stream = stream
+
+    def __getattr__(self, name: str) -> Any:
+        return getattr(self._stream, name)
+
+    def write(self, text: str) -> int:
+        try:
+            return int(self._stream.write(text))
+        except OSError as error:
+            raise _named(error) from None
+
+    def writelines(self, lines: Any) -> None:
+        for line in lines:
+            self.write(line)
+
+    def flush(self) -> None:
+        try:
+            self._stream.flush()
+        except OSError as error:
+            raise _named(error) from None
+
+
+def _named(error: OSError) -> OSError:
+    if error.filename is None and not isinstance(error, BrokenPipeError):
+        error.filename = "the standard output"
+    return error
+
+
+@contextlib.contextmanager
+def _named_output() -> Iterator[None]:
+    """Makes ``sys.stdout`` a :class:`_NamedOutput` while the block runs, as it was after."""
+    before = sys.stdout
+    sys.stdout = _NamedOutput(before) if before is not None else before
+    try:
+        yield
+    finally:
+        sys.stdout = before
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Runs the ``mazesim`` command.
 
@@ -282,7 +328,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     if with_nul:
         word = str(arguments[with_nul[0]])
         print(
-            f"mazesim: error: argument {with_nul[0] + 1} ({word[:40]!r}) "
+            f"mazesim: error: argument {with_nul[0] + 1} ({_shown(word[:40])}) "
             "holds a NUL character, which no file name or value has; remove it",
             file=sys.stderr,
         )
@@ -316,7 +362,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     if command == "ros2":
         args.ros_arguments = ros_arguments
     try:
-        with _command_line():  # messages name the options (--out), not Python's parameters
+        # Messages name the options (--out), not Python's parameters, and the standard output.
+        with _command_line(), _named_output():
             return int(args.run(args))
     except BrokenPipeError as error:
         if not _stdout_is_a_pipe():
@@ -376,6 +423,6 @@ def _missing_package(error: BaseException) -> str | None:
         return None
     package = _PIP_NAMES.get(module, module)
     return (
-        f"this command needs the Python package {package!r}, which is not installed for "
+        f"this command needs the Python package {_shown(package)}, which is not installed for "
         f"{sys.executable}: install it with {sys.executable} -m pip install {package}"
     )

@@ -144,7 +144,7 @@ def name_list(text: str, names: Sequence[str], what: str) -> list[str]:
     chosen = [part.strip() for part in text.split(",") if part.strip()]
     if not chosen or any(name not in names for name in chosen):
         meant = [
-            f"{closest!r} for {name!r}"
+            f"{_shown(closest)} for {_shown(name)}"
             for name in chosen
             if name not in names and (closest := _closest_name(name, list(names))) is not None
         ]

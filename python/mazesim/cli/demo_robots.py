@@ -38,7 +38,7 @@ def proximity_columns(robot: RobotProfile, name: str | None = None) -> list[int]
     """
     names = list(robot.distance_sensor_names)
     if robot.distance_sensor_unit != "raw" or not set(PROXIMITY) <= set(names):
-        which = f"robot {name!r} ({robot.name})" if name else f"robot {robot.name!r}"
+        which = f"robot {_shown(name)} ({robot.name})" if name else f"robot {_shown(robot.name)}"
         raise InvalidArgumentError(
             f"the demo's avoid-collision controller needs the e-puck's 8 raw proximity sensors "
             f"ps0-ps7; {which} has {', '.join(names)} in {_shown(robot.distance_sensor_unit)}"

@@ -233,8 +233,8 @@ def whole_world_run(args: argparse.Namespace, controller_file: str) -> argparse.
     labels = ", ".join(repr(r.get("name") or r.get("def_name") or r.get("model")) for r in defaults)
     print(
         f"mazesim: robots {labels} leave their controller field out and run their PROTO's "
-        f"default controller, as in Webots: the whole world runs, {controller!r} on robot "
-        f"{key!r}",
+        f"default controller, as in Webots: the whole world runs, {_shown(controller)} on robot "
+        f"{_shown(key)}",
         file=sys.stderr,
     )
     return argparse.Namespace(
@@ -327,7 +327,7 @@ def run_world_command(args: argparse.Namespace, out: TextIO) -> int:
     for robot in run.robots:
         if robot.note:
             print(
-                f"mazesim: warning: robot {robot.name!r}: {robot.note}: it stands still",
+                f"mazesim: warning: robot {_shown(robot.name)}: {robot.note}: it stands still",
                 file=sys.stderr,
             )
     robots: list[dict[str, Any]] = [

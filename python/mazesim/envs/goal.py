@@ -28,8 +28,8 @@ import numpy.typing as npt
 from gymnasium.vector import AutoresetMode, VectorEnv
 from gymnasium.vector.utils import batch_space
 
-from mazesim._checks import checks_own_arguments
 from mazesim._core import World
+from mazesim._hot_paths import checks_own_arguments
 from mazesim.envs.maze_env import EPuckMazeEnv
 from mazesim.envs.options import DEFAULT_MAX_EPISODE_STEPS, EnvOptions
 from mazesim.envs.vector import EPuckMazeVectorEnv

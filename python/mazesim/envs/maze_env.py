@@ -9,8 +9,8 @@ import gymnasium
 import numpy as np
 import numpy.typing as npt
 
-from mazesim._checks import checks_own_arguments
 from mazesim._core import Simulator, StepBounds, World
+from mazesim._hot_paths import checks_own_arguments
 from mazesim.envs.errors import EnvClosedError, ResetNeededError, check_options, check_seed
 from mazesim.envs.navigation import (
     NavigationFeatures,

@@ -259,7 +259,7 @@ class EnvOptions:
             # gymnasium's make takes these itself: a typo of one reaches the env.
             known = [*option_names(), *_MAKE_KEYWORDS]
             meant = [
-                f"{closest!r} for {key!r}"
+                f"{_shown(closest)} for {_shown(key)}"
                 for key in unknown
                 if (closest := _closest_name(key, known)) is not None
             ]

@@ -26,8 +26,8 @@ from gymnasium.utils import seeding
 from gymnasium.vector import AutoresetMode, VectorEnv
 from gymnasium.vector.utils import batch_space
 
-from mazesim._checks import checks_own_arguments
 from mazesim._core import BatchSimulator, World
+from mazesim._hot_paths import checks_own_arguments
 from mazesim.envs.errors import (
     MAX_SEED,
     EnvClosedError,

@@ -54,7 +54,7 @@ from mazesim.episodes import (
     run_episodes,
     shortest_path_steps,
 )
-from mazesim.errors import InvalidArgumentError, RegisteredName
+from mazesim.errors import InvalidArgumentError, RegisteredName, _shown
 from mazesim.learn.core_episodes import StretchReplay, run_navigator_episodes, stretches_apply
 from mazesim.learn.discretise import format_levels
 from mazesim.learn.episode_ranges import NavigatorEpisodes
@@ -572,7 +572,7 @@ def _trace_line(batch: EpisodeBatch, record: StepRecord, env: int) -> str:
         note = f"      checkpoint {event:+d} ({direction})"
         chosen = int(record.chosen[env])
         if chosen >= 0:
-            note += f" -> higher level: {SUBTASK_NAMES[chosen]!r}"
+            note += f" -> higher level: {_shown(SUBTASK_NAMES[chosen])}"
         before.append(note)
     line = (
         f"{step:5d} {step * CONTROL_STEP_MS / 1000.0:7.2f}  {x:6.3f} {y:6.3f} "

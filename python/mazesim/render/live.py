@@ -17,6 +17,8 @@ from typing import Any, TextIO
 import numpy as np
 import numpy.typing as npt
 
+from mazesim.errors import _shown
+
 __all__ = [
     "LIVE_OPTION_NOTICE",
     "NON_INTERACTIVE_BACKENDS",
@@ -38,7 +40,7 @@ def display_problem() -> str | None:
 
     backend = str(matplotlib.get_backend()).lower()
     if backend in NON_INTERACTIVE_BACKENDS:
-        return f"the matplotlib backend {backend!r} cannot open windows"
+        return f"the matplotlib backend {_shown(backend)} cannot open windows"
     if sys.platform.startswith("linux") and not (
         os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY")
     ):

@@ -158,7 +158,7 @@ class RandomisationSpec:
         (:func:`parse_spec` reads it back as the same spec)."""
         parts = [f"{ROBOT_AXIS}={'|'.join(self.robots)}"] if self.robots else []
         parts += [
-            f"{name}=" + "|".join(f"{low!r}:{high!r}" for low, high in spans)
+            f"{name}=" + "|".join(repr(low) + ":" + repr(high) for low, high in spans)
             for name, spans in self.axes()
         ]
         return ",".join(parts)

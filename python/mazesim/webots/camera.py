@@ -28,6 +28,7 @@ from typing import TYPE_CHECKING, Any, Union
 import numpy as np
 import numpy.typing as npt
 
+from mazesim._hot_paths import checks_own_arguments
 from mazesim.errors import InvalidArgumentError, WrongTypeError, _shown
 from mazesim.webots.devices import _print_error, _Sensor, sampling_period, webots_property
 from mazesim.webots.frames import Axes, axes_or_none, camera_heading
@@ -80,14 +81,6 @@ ROBOT_BOTTOM = 0.0025
 ROBOT_COLOUR = (0.5, 0.5, 0.5)
 PLATE_EDGE = (0.037, 0.0385)
 PLATE_COLOUR = (0.184314, 0.635294, 0.184314)
-
-
-def _checks_own_arguments(func: Any) -> Any:
-    """Marks ``func`` as checking its own arguments: the package's argument check, which wraps
-    every public function when mazesim is imported, leaves it as it is (as the environments'
-    ``step``)."""
-    func.__mazesim_checked__ = True
-    return func
 
 
 @dataclass(frozen=True)
@@ -960,32 +953,32 @@ class Camera(_Sensor):
     # times a step, for every pixel it looks at: the surface's general check cost tens of
     # microseconds a call, more than the step's rendering) and refuse a pixel outside the image.
     @staticmethod
-    @_checks_own_arguments
+    @checks_own_arguments
     def imageGetRed(image: bytes, width: int, x: int, y: int) -> int:
         """The red level (0-255) of pixel (x, y) of a BGRA image."""
         return image[_pixel("imageGetRed", image, width, x, y) + 2]
 
     @staticmethod
-    @_checks_own_arguments
+    @checks_own_arguments
     def imageGetGreen(image: bytes, width: int, x: int, y: int) -> int:
         """The green level (0-255) of pixel (x, y) of a BGRA image."""
         return image[_pixel("imageGetGreen", image, width, x, y) + 1]
 
     @staticmethod
-    @_checks_own_arguments
+    @checks_own_arguments
     def imageGetBlue(image: bytes, width: int, x: int, y: int) -> int:
         """The blue level (0-255) of pixel (x, y) of a BGRA image."""
         return image[_pixel("imageGetBlue", image, width, x, y)]
 
     @staticmethod
-    @_checks_own_arguments
+    @checks_own_arguments
     def imageGetGray(image: bytes, width: int, x: int, y: int) -> int:
         """The grey level (0-255, the mean of red, green and blue) of pixel (x, y)."""
         base = _pixel("imageGetGray", image, width, x, y)
         return (image[base] + image[base + 1] + image[base + 2]) // 3
 
     @staticmethod
-    @_checks_own_arguments
+    @checks_own_arguments
     def imageGetGrey(image: bytes, width: int, x: int, y: int) -> int:
         """Same as :meth:`imageGetGray`."""
         base = _pixel("imageGetGrey", image, width, x, y)

@@ -17,6 +17,7 @@ import sys
 from collections.abc import Callable, Mapping, Sequence
 from typing import Any
 
+from mazesim.errors import _shown
 from mazesim.webots.camera import Camera, CameraView, node_view
 from mazesim.webots.devices import (
     EPUCK_PROXIMITY_APERTURE,
@@ -224,7 +225,7 @@ def extension_device(simulation: RobotSimulation, entry: Mapping[str, Any]) -> D
     build = builders.get(kind)
     if build is None:
         print(
-            f"mazesim: warning: the {kind or 'unnamed'} device {name!r} in the world is not "
+            f"mazesim: warning: the {kind or 'unnamed'} device {_shown(name)} in the world is not "
             "simulated",
             file=sys.stderr,
         )

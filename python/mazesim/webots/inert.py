@@ -109,7 +109,7 @@ class Speaker(NotSimulated, Device):
                 seconds = clip.getnframes() / float(clip.getframerate())
         except (OSError, EOFError, wave.Error) as error:
             print(
-                f"Error: wb_speaker_play_sound(): cannot play {sound!r}: {_shown(error)}",
+                f"Error: wb_speaker_play_sound(): cannot play {_shown(sound)}: {_shown(error)}",
                 file=sys.stderr,
             )
             return

@@ -20,6 +20,7 @@ import sys
 from collections.abc import Mapping, Sequence
 from typing import TYPE_CHECKING, Any
 
+from mazesim.errors import _shown
 from mazesim.webots.devices import Motor, PositionSensor
 from mazesim.webots.last_commands import POSITION_GAIN, PositionControl
 from mazesim.webots.node_types import node_type
@@ -77,8 +78,8 @@ class JointMotor(Motor):
         self._warned_clamp = False
         kind = "LinearMotor" if self.getType() == self.LINEAR else "RotationalMotor"
         print(
-            f"mazesim: warning: the {kind} device {name!r} in the world drives a joint mazesim "
-            "does not simulate: it takes every command and its joint turns freely, but it "
+            f"mazesim: warning: the {kind} device {_shown(name)} in the world drives a joint "
+            "mazesim does not simulate: it takes every command and its joint turns freely, but it "
             "moves nothing",
             file=sys.stderr,
         )

@@ -52,7 +52,13 @@ import numpy as np
 
 from mazesim._core import RobotProfile, Simulator, World
 from mazesim._toml import dump_toml, load_toml
-from mazesim.errors import ControllerBuildError, MazesimIOError, WorldFormatError, _closest_name
+from mazesim.errors import (
+    ControllerBuildError,
+    MazesimIOError,
+    WorldFormatError,
+    _closest_name,
+    _shown,
+)
 from mazesim.webots.controller_process import (
     ControllerJob,
     answer,
@@ -652,7 +658,7 @@ def _controller_meant(name: str, world_path: str) -> str:
             controllers = os.path.join(project, "controllers")
             names += [n for n in sorted(os.listdir(controllers))[:1000] if n != name]
     meant = _closest_name(name, names)
-    return f" (did you mean {meant!r}?)" if meant else ""
+    return f" (did you mean {_shown(meant)}?)" if meant else ""
 
 
 def _other_language(name: str, world_path: str) -> str:
@@ -917,7 +923,7 @@ def _own_profiles(
         own = own_sensors(robot_profile_name({"robot_profile": robot.get("profile")}), scene)
         label = robot_label(robot)
         for warning in own.warnings:
-            print(f"mazesim: warning: robot {label!r}: {warning}", file=sys.stderr)
+            print(f"mazesim: warning: robot {_shown(label)}: {warning}", file=sys.stderr)
         if own.profile is not None:
             profiles[index] = own.profile
     return profiles
@@ -1261,7 +1267,7 @@ class _Pipes:
                 run.exit_status = run.exit_status or 1
                 run.error = "the controller's process ended without a report\n"
                 # Its own process did not say so, as it says a controller's traceback.
-                sys.stderr.write(f"mazesim: robot {run.name!r}: {run.error}")
+                sys.stderr.write(f"mazesim: robot {_shown(run.name)}: {run.error}")
             return
         if message[0] == "call":
             self._answer(ready, index, message)

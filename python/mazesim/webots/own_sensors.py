@@ -28,7 +28,7 @@ from typing import Any
 
 from mazesim._core import RobotProfile
 from mazesim._toml import dump_toml, load_toml
-from mazesim.errors import MazesimError
+from mazesim.errors import MazesimError, _shown
 from mazesim.webots.scene import Row, Scene
 
 __all__ = ["OwnSensors", "own_sensors"]
@@ -162,7 +162,7 @@ def _tilted_rays(layout: Mapping[str, Any], scene: Scene) -> tuple[dict[str, flo
             reach = float(models[sensor["model"]]["table"][-1][0])
             height = scene.sensor_heights.get(name, 0.0)
             if pose[3] < -LEVEL_RAY_RAD and height / math.sin(tilt) < reach:
-                floor.append(f"{name!r} ({height / math.sin(tilt):.3f} m)")
+                floor.append(f"{_shown(name)} ({height / math.sin(tilt):.3f} m)")
         if tilt > LEVEL_RAY_RAD:
             elevations[name] = tilt
     warnings = (
@@ -194,12 +194,12 @@ def _ray_types(layout: Mapping[str, Any], scene: Scene) -> tuple[dict[str, str],
         if limit is None:
             limit = (
                 f"expected one of {', '.join(map(repr, [*TYPE_LIMITS, INFRA_RED]))}, found "
-                f"{found!r}: read as generic"
+                f"{_shown(found)}: read as generic"
             )
         if limit:
             warnings.append(
-                f"DistanceSensor {', '.join(names)} (type {found!r}) reads the distance alone, "
-                f"whatever colour its ray meets; {limit}"
+                f"DistanceSensor {', '.join(names)} (type {_shown(found)}) reads the distance "
+                f"alone, whatever colour its ray meets; {limit}"
             )
     return types, warnings
 

@@ -15,6 +15,7 @@ import numpy as np
 import numpy.typing as npt
 
 from mazesim._core import World
+from mazesim.errors import _shown
 
 __all__ = ["FloorPaint", "WallBoxes"]
 
@@ -264,7 +265,7 @@ class _PaintGrid:
 
 def _number(region: dict[str, object], key: str) -> float:
     value = region[key]
-    assert isinstance(value, (int, float)), f"paint {key}: expected a number, found {value!r}"
+    assert isinstance(value, (int, float)), f"paint {key}: expected a number, found {_shown(value)}"
     return float(value)
 
 
@@ -272,14 +273,14 @@ def _colour(value: object) -> tuple[float, float, float]:
     """A colour given as (red, green, blue), or NaNs for none."""
     if value is None:
         return (math.nan, math.nan, math.nan)
-    assert isinstance(value, (list, tuple)), f"colour: expected (r, g, b), found {value!r}"
+    assert isinstance(value, (list, tuple)), f"colour: expected (r, g, b), found {_shown(value)}"
     red, green, blue = (float(v) for v in value)
     return (red, green, blue)
 
 
 def _pair(region: dict[str, object], key: str) -> tuple[float, float]:
     value = region[key]
-    assert isinstance(value, (list, tuple)), f"paint {key}: expected [x, y], found {value!r}"
+    assert isinstance(value, (list, tuple)), f"paint {key}: expected [x, y], found {_shown(value)}"
     return float(value[0]), float(value[1])
 
 

@@ -423,7 +423,7 @@ class Robot(NotSimulated):
         asked = ", ".join(_shortened(repr(name)) for name in dict.fromkeys(self._missing_devices))
         have = ", ".join(repr(name) for name in self._equipment.devices)
         return (
-            f"mazesim: getDevice returned None for {asked}: robot {self.getName()!r} has no "
+            f"mazesim: getDevice returned None for {asked}: robot {_shown(self.getName())} has no "
             f"device of that name; its devices: {have}\n"
         )
 

@@ -19,6 +19,8 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
+from mazesim.errors import _shown
+
 __all__ = ["IMAGE_FORMATS", "VIEW_SIZE", "export_view", "view_image"]
 
 #: The formats an exported image is written in, by file extension (lower case).
@@ -102,7 +104,7 @@ def export_view(simulation: Any, filename: str, quality: int) -> str | None:
     if extension not in IMAGE_FORMATS:
         known = ", ".join(f"'{e}'" for e in IMAGE_FORMATS)
         return (
-            f"Error: {function}: unsupported image format {extension or '(none)'!r} of "
+            f"Error: {function}: unsupported image format {_shown(extension or '(none)')} of "
             f"{filename}: the target file should have one of the extensions {known}."
         )
     image = Image.fromarray(view_image(simulation))

@@ -258,6 +258,7 @@ impl RobotProfile {
     pub fn from_toml(text: &str, source: &str) -> Result<RobotProfile> {
         let limit = crate::limits::MAX_WORLD_FILE_BYTES;
         crate::io::check_text_length(text, source, limit, "the robot profile")?;
+        let text: &str = &crate::io::toml_text(text);
         let file: ProfileFile = toml::from_str(text).map_err(|e| {
             let refused = locate::from_toml_error(source, text, &e);
             file_kind::named_for_its_kind(text, source, FileKind::RobotProfile, refused)

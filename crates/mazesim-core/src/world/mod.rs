@@ -130,6 +130,7 @@ impl World {
     fn parse(text: &str, source: &str, written_here: bool) -> Result<World> {
         let limit = crate::limits::MAX_WORLD_FILE_BYTES;
         crate::io::check_text_length(text, source, limit, "the world file")?;
+        let text: &str = &crate::io::toml_text(text);
         locate::check_table_count(text, source)?;
         let spec: WorldSpec = toml::from_str(text).map_err(|e| {
             let refused = locate::from_toml_error(source, text, &e);
