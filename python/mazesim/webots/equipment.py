@@ -232,7 +232,7 @@ def extension_device(simulation: RobotSimulation, entry: Mapping[str, Any]) -> D
         return None
     device = build()
     resolution = fields.get("resolution")
-    if kind in _RESOLVED_KINDS and isinstance(resolution, int | float):
+    if kind in _RESOLVED_KINDS and isinstance(resolution, (int, float)):
         device._resolution = float(resolution)  # type: ignore[attr-defined]
     return device
 

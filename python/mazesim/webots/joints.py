@@ -45,7 +45,7 @@ def _gains(fields: Mapping[str, Any]) -> tuple[float, float, float]:
     """The node's ``controlPID`` (Webots' default 10 0 0 where it is missing or malformed)."""
     value = fields.get("controlPID")
     if isinstance(value, Sequence) and len(value) == 3:
-        if all(isinstance(v, int | float) for v in value):
+        if all(isinstance(v, (int, float)) for v in value):
             p, i, d = (float(v) for v in value)
             if p > 0.0 and i >= 0.0 and d >= 0.0:
                 return p, i, d

@@ -32,7 +32,7 @@ __all__ = ["RayLidar", "RayRangeFinder"]
 
 def _number(fields: Mapping[str, Any], name: str, default: float) -> float:
     value = fields.get(name, default)
-    return float(value) if isinstance(value, int | float) else default
+    return float(value) if isinstance(value, (int, float)) else default
 
 
 class _Rays:
