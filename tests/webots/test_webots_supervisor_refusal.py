@@ -10,10 +10,10 @@ import sys
 from pathlib import Path
 
 import pytest
+from test_webots_supervisor_tree import supervisor_of
 
 import mazesim
 from mazesim.webots import controller, prepare
-from mazesim.webots.scene import read_scene
 from native_controllers import NEEDS_COMPILERS
 
 #: An E-puck that leaves ``supervisor`` FALSE, and a box it could look up by its DEF name.
@@ -31,15 +31,6 @@ DEF ME E-puck { translation -0.2 -0.1 0 controller "seeker" }
 GRANTED = PLAIN.replace('controller "seeker"', 'controller "seeker" supervisor TRUE')
 
 pytestmark = pytest.mark.usefixtures("fresh_robot")
-
-
-def supervisor_of(text: str, tmp_path: Path) -> controller.Supervisor:
-    """The ``Supervisor`` a controller of the world's E-puck makes."""
-    path = tmp_path / "world.wbt"
-    path.write_text(text)
-    prepare(mazesim.load_world(str(path)), seconds=5.0, noise=False, scene=read_scene(text))
-    controller.Robot.created = None
-    return controller.Supervisor()
 
 
 def test_a_plain_robots_supervisor_finds_no_node_and_says_why(
@@ -91,28 +82,36 @@ def test_a_robot_of_a_mazesim_world_keeps_the_powers_its_controller_asks_for() -
     assert supervisor.getSupervisor() is True
 
 
+def run_seeker(
+    tmp_path: Path, world: str, source: str, suffix: str
+) -> subprocess.CompletedProcess[str]:
+    """``mazesim webots run`` of the seeker controller ``source`` on ``world``."""
+    (tmp_path / "worlds").mkdir()
+    (tmp_path / "worlds" / "seek.wbt").write_text(world)
+    folder = tmp_path / "controllers" / "seeker"
+    folder.mkdir(parents=True)
+    (folder / f"seeker{suffix}").write_text(source)
+    return subprocess.run(
+        [sys.executable, "-m", "mazesim", "webots", "run", str(folder / f"seeker{suffix}"),
+         "--world", str(tmp_path / "worlds" / "seek.wbt"), "--seconds", "0.2",
+         "--out", str(tmp_path / "out"), "--no-progress"],
+        capture_output=True, text=True, timeout=300, check=False,
+    )  # fmt: skip
+
+
 @pytest.mark.parametrize(("world", "ends"), [(PLAIN, "refused"), (GRANTED, "found")])
 def test_a_run_of_a_plain_robots_supervisor_prints_webots_refusal(
     tmp_path: Path, world: str, ends: str
 ) -> None:
     """``mazesim webots run``: the controller's look-up by DEF name gives None, with Webots'
     lines on stderr, unless the world makes its robot a supervisor."""
-    (tmp_path / "worlds").mkdir()
-    (tmp_path / "worlds" / "seek.wbt").write_text(world)
-    folder = tmp_path / "controllers" / "seeker"
-    folder.mkdir(parents=True)
-    (folder / "seeker.py").write_text(
+    source = (
         "from controller import Supervisor\n"
         "s = Supervisor()\n"
         "s.step(32)\n"
         "print('found' if s.getFromDef('GOAL') is not None else 'refused')\n"
     )
-    done = subprocess.run(
-        [sys.executable, "-m", "mazesim", "webots", "run", str(folder / "seeker.py"),
-         "--world", str(tmp_path / "worlds" / "seek.wbt"), "--seconds", "0.2",
-         "--out", str(tmp_path / "out"), "--no-progress"],
-        capture_output=True, text=True, timeout=120, check=False,
-    )  # fmt: skip
+    done = run_seeker(tmp_path, world, source, ".py")
     assert done.returncode == 0, done.stderr
     assert ends in done.stdout.splitlines()
     refusal = "in a 'Robot' controller." in done.stderr
@@ -127,22 +126,15 @@ def test_a_c_controller_of_a_plain_robot_is_refused_the_supervisor_functions(
 ) -> None:
     """The C library serves a compiled controller's supervisor functions as Webots' does:
     NULL, with Webots' lines, unless the world makes its robot a supervisor."""
-    (tmp_path / "worlds").mkdir()
-    (tmp_path / "worlds" / "seek.wbt").write_text(world)
-    folder = tmp_path / "controllers" / "seeker"
-    folder.mkdir(parents=True)
-    (folder / "seeker.c").write_text(
+    done = run_seeker(
+        tmp_path,
+        world,
         "#include <stdio.h>\n#include <webots/robot.h>\n#include <webots/supervisor.h>\n"
         "int main() {\n  wb_robot_init();\n  wb_robot_step(32);\n"
         '  printf("%s\\n", wb_supervisor_node_get_from_def("GOAL") ? "found" : "refused");\n'
-        "  wb_robot_cleanup();\n  return 0;\n}\n"
+        "  wb_robot_cleanup();\n  return 0;\n}\n",
+        ".c",
     )
-    done = subprocess.run(
-        [sys.executable, "-m", "mazesim", "webots", "run", str(folder / "seeker.c"),
-         "--world", str(tmp_path / "worlds" / "seek.wbt"), "--seconds", "0.2",
-         "--out", str(tmp_path / "out"), "--no-progress"],
-        capture_output=True, text=True, timeout=300, check=False,
-    )  # fmt: skip
     assert done.returncode == 0, done.stderr
     assert ends in done.stdout.splitlines()
     refusal = "ignoring illegal call to wb_supervisor_node_get_from_def()" in done.stderr
