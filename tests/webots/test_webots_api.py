@@ -70,8 +70,10 @@ def release() -> Iterator[None]:
 
 def supervisor_in(path: Path) -> controller.Supervisor:
     """A supervisor of the robot in a ``.wbt`` world, as ``mazesim webots run`` prepares it."""
-    text = path.read_text()
-    prepare(mazesim.load_world(str(path)), seconds=5.0, noise=False, scene=read_scene(text))
+    scene = read_scene(path.read_text())
+    # As a world whose robot is a supervisor: Webots refuses a plain robot's supervisor calls.
+    scene.supervisor, scene.supervisor_refused = True, False
+    prepare(mazesim.load_world(str(path)), seconds=5.0, noise=False, scene=scene)
     controller.Robot.created = None
     return controller.Supervisor()
 

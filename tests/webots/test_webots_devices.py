@@ -442,7 +442,9 @@ def test_the_reports_robot_profile_picks_the_devices_by_name() -> None:
 
 def test_other_def_nodes_have_their_translation_from_the_world_file() -> None:
     world = Path(__file__).parents[1] / "data" / "webots-worlds" / "collision_avoidance.wbt"
-    scene = read_scene(world.read_text())
+    # Its E-puck made a supervisor, as Webots needs it to be for a controller's look-ups.
+    text = world.read_text().replace("E-puck {", "E-puck {\n  supervisor TRUE", 1)
+    scene = read_scene(text)
     prepare(mazesim.load_world(str(world)), seconds=1.0, scene=scene)
     controller.Robot.created = None
     supervisor = controller.Supervisor()
@@ -549,7 +551,10 @@ def test_a_python_controller_that_draws_on_a_display_is_told_it_is_not_drawn(
 
 
 def test_the_robots_name_and_custom_data_come_from_the_world() -> None:
-    text = 'E-puck {\n  name "scout"\n  customData "lap 3"\n  turretSlot [ GPS { name "g" } ]\n}\n'
+    text = (
+        'E-puck {\n  name "scout"\n  customData "lap 3"\n  supervisor TRUE\n'
+        '  turretSlot [ GPS { name "g" } ]\n}\n'
+    )
     scene = read_scene(text)
     assert (scene.robot_name, scene.robot_custom_data) == ("scout", "lap 3")
     prepare(mazesim.load_world("arena"), seconds=1.0, scene=scene)

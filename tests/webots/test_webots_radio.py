@@ -244,7 +244,7 @@ def test_the_e_pucks_emitter_reaches_any_distance_as_its_protos_does() -> None:
 # --- the channels a world file gives --------------------------------------------------------
 
 WITH_CHANNELS = """#VRML_SIM R2023b utf8
-E-puck { controller "x" emitter_channel 4 receiver_channel 5 }
+E-puck { controller "x" emitter_channel 4 receiver_channel 5 supervisor TRUE }
 E-puck { translation 0.5 0 0 name "other" controller "x" }
 """
 

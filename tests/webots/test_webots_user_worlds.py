@@ -77,12 +77,14 @@ def test_a_referee_robot_before_the_e_puck_lends_it_nothing(tmp_path: Path) -> N
 
 
 def test_the_supervisors_self_is_the_e_puck_not_the_referee(tmp_path: Path) -> None:
+    # The e-puck a supervisor too, as Webots needs it to be for its controller's look-ups.
+    text = REFEREE_WORLD.replace('"team #2"\n', '"team #2"\n  supervisor TRUE\n')
     world_file = tmp_path / "world.wbt"
-    world_file.write_text(REFEREE_WORLD)
+    world_file.write_text(text)
     world, report = import_wbt(str(world_file))
     assert report["robot_line"] == 10
-    scene = read_scene(REFEREE_WORLD, report["robot_model"], report["robot_line"])
-    assert (scene.robot_def, scene.robot_name, scene.supervisor) == ("EPUCK", "my e-puck", False)
+    scene = read_scene(text, report["robot_model"], report["robot_line"])
+    assert (scene.robot_def, scene.robot_name, scene.supervisor) == ("EPUCK", "my e-puck", True)
     assert [node.def_name for node in scene.nodes if node.robot] == ["EPUCK"]
     prepare(world, seconds=1.0, noise=False, report=report, scene=scene)
     controller.Robot.created = None

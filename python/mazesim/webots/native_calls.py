@@ -35,6 +35,7 @@ from mazesim.webots.devices import _print_error
 from mazesim.webots.field import Field
 from mazesim.webots.inert import ContactPoint, LidarPoint
 from mazesim.webots.supervisor import Node, Supervisor
+from mazesim.webots.supervisor_refusal import _refusal_of
 
 __all__ = ["FUNCTIONS", "Function", "NativeCalls"]
 
@@ -355,6 +356,9 @@ class NativeCalls:
         if function.target == "supervisor":
             if not isinstance(self.robot, Supervisor):
                 _print_error(f"Error: {name}() can only be called by a supervisor.")
+                return None
+            if self.robot._simulation.scene.supervisor_refused:
+                _refusal_of(name)
                 return None
             # As a Python controller that makes a Supervisor, the robot becomes one.
             self.robot._simulation.supervisor = True

@@ -212,7 +212,8 @@ class Robot(NotSimulated):
     custom_data = webots_property("getCustomData", "setCustomData")
 
     def getSupervisor(self) -> bool:
-        """Whether the robot is a supervisor (the world says so, or the controller made one)."""
+        """Whether the robot is a supervisor: the world says so, or its controller made one and
+        the world does not refuse it (:mod:`~mazesim.webots.supervisor_refusal`)."""
         return self._simulation.supervisor
 
     supervisor = webots_property("getSupervisor")

@@ -151,6 +151,10 @@ class Scene:
         defs: DEF name -> node type, in file order.
         robot_def: The robot node's DEF name, or None.
         supervisor: Whether the file says ``supervisor TRUE``.
+        supervisor_refused: Whether Webots refuses the supervisor functions to the robot's
+            controller: its node is one Webots' own types make a plain robot (``Robot``, an
+            E-puck PROTO, ``DifferentialWheels``) and leaves ``supervisor`` FALSE
+            (:mod:`mazesim.webots.supervisor_refusal`); False without a robot node.
         synchronization: The robot's ``synchronization`` field (Webots' default TRUE).
         robot_name: The robot's ``name`` field (Webots' default for the E-puck, ``"e-puck"``).
         robot_custom_data: The robot's ``customData`` field.
@@ -219,6 +223,7 @@ class Scene:
     defs: dict[str, str] = field(default_factory=dict)
     robot_def: str | None = None
     supervisor: bool = False
+    supervisor_refused: bool = False
     synchronization: bool = True
     robot_name: str = "e-puck"
     robot_custom_data: str = ""
@@ -344,6 +349,9 @@ def _scene(
             second = first_value(own, "version", Field.string) == "2"
             scene.traction_version = "2" if second else "1"
     scene.supervisor = bool(first_value(own, "supervisor", Field.flag))
+    scene.supervisor_refused = (
+        robot is not None and robot.type_name in ROBOT_TYPES and not scene.supervisor
+    )
     scene.synchronization = first_value(own, "synchronization", Field.flag) is not False
     robot_lines = {
         node.start: line_of(node.type_start) for node in every if node.type_name in robot_types

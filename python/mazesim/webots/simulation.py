@@ -114,7 +114,8 @@ class RobotSimulation:
         report: The import report of the ``.wbt`` world (empty for a mazesim world).
         keys: The keyboard script (empty: no key is ever pressed).
         supervisor: Whether the robot is a supervisor (the world's ``supervisor TRUE``, or
-            the controller created a ``Supervisor``).
+            the controller created a ``Supervisor`` the world does not refuse:
+            :mod:`~mazesim.webots.supervisor_refusal`).
         scene: DEF names, camera fields and north read from the world file.
         sensor_tables: The world's own lookup tables the robot's sensors read through, by
             sensor name (see :func:`~mazesim.webots.own_sensors.own_sensors`); empty when all

@@ -62,6 +62,7 @@ from mazesim.webots.solids import (
     relative,
     world_objects,
 )
+from mazesim.webots.supervisor_refusal import _refuse_supervisor
 from mazesim.webots.world_save import with_fields
 
 __all__ = ["Field", "Node", "Supervisor"]
@@ -747,8 +748,12 @@ class Supervisor(Robot):
     def __init__(self) -> None:
         """Attaches to the prepared simulation as a supervisor."""
         super().__init__()
-        self._simulation.supervisor = True
         scene = self._simulation.scene
+        if scene.supervisor_refused:
+            # A plain robot of the world file: Webots refuses every supervisor function.
+            _refuse_supervisor(self)
+        else:
+            self._simulation.supervisor = True
         robot_type = str(self._simulation.report.get("robot_model") or "E-puck")
         self._self = Node(robot_type, scene.robot_def or "", robot=True)
         self._self._strings.update(name=scene.robot_name, customData=self._custom_data)
