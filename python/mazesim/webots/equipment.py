@@ -146,10 +146,14 @@ def _wheel_names(
     the first wheel not yet named, the left before the right (the PROTO's order). A robot with
     more than two such devices of its own (an arm's motors besides) keeps the PROTO's names, and
     so do the position sensors of a robot with more than two motors of its own (not the e-puck's
-    two wheels: see :mod:`mazesim.webots.joints`).
+    two wheels: see :mod:`mazesim.webots.joints`). A lone device naming neither wheel (a
+    gripper's lift ``motor`` beside wheels that keep the PROTO's names, which the import does not
+    list as the robot's own) is not a wheel's: renamed wheels come as a pair or say their side.
     """
     own = _own(entries, kind)
     if not own or len(own) > 2 or len(_own(entries, "RotationalMotor")) > 2:
+        return list(stock), []
+    if len(own) == 1 and not _names_a_side(str(own[0]["name"])):
         return list(stock), []
     names = list(stock)
     free = [0, 1]
@@ -161,6 +165,12 @@ def _wheel_names(
         names[side] = name
         free.remove(side)
     return names, own
+
+
+def _names_a_side(name: str) -> bool:
+    """Whether a device's name says which wheel it is (``left_motor``, ``encoder R``...)."""
+    lower = name.lower()
+    return "left" in lower or "right" in lower
 
 
 def extension_device(simulation: RobotSimulation, entry: Mapping[str, Any]) -> Device | None:
