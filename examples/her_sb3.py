@@ -30,6 +30,9 @@ from typing import Any
 import gymnasium
 import matplotlib
 
+# First, as it says what to install when Stable-Baselines3 or torch is missing.
+import mazesim.integrations.sb3  # noqa: F401
+
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402

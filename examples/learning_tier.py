@@ -41,6 +41,9 @@ from typing import Any
 
 import matplotlib
 
+# First, as it says what to install when Stable-Baselines3 or torch is missing.
+from mazesim.integrations.sb3 import make_vec_env
+
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
@@ -53,7 +56,6 @@ from stable_baselines3.common.vec_env import VecEnv, VecNormalize  # noqa: E402
 
 from mazesim.envs.baselines import FrontierExplorer, WallFollower, evaluate  # noqa: E402
 from mazesim.envs.curriculum import MazeSizeCurriculum  # noqa: E402
-from mazesim.integrations.sb3 import make_vec_env  # noqa: E402
 
 TASK = "mazesim/UnseenMazeExplore-v0"
 AGENTS = ("ppo", "recurrent", "curriculum")

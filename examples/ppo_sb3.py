@@ -38,6 +38,9 @@ from typing import Any
 
 import matplotlib
 
+# First, as it says what to install when Stable-Baselines3 or torch is missing.
+from mazesim.integrations.sb3 import make_vec_env
+
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
@@ -45,8 +48,6 @@ import torch  # noqa: E402
 from stable_baselines3 import PPO  # noqa: E402
 from stable_baselines3.common.logger import configure  # noqa: E402
 from stable_baselines3.common.vec_env import VecEnv, VecNormalize  # noqa: E402
-
-from mazesim.integrations.sb3 import make_vec_env  # noqa: E402
 
 #: Settings of each tier: environments, env-steps, PPO's rollout length and minibatch size,
 #: whether rewards are normalised, whether the held-out episodes use the policy's mean action.

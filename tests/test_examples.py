@@ -250,3 +250,20 @@ def test_marl_ppo_trains_and_compares_with_random_and_hand_rule(tmp_path: Path) 
     assert all(found["episodes"] == 4 for found in summary["evaluation"].values())
     assert (tmp_path / "run" / "curve.png").read_bytes().startswith(b"\x89PNG")
     assert (tmp_path / "run" / "progress.csv").read_text().startswith("robot_steps,return,measure")
+
+
+@pytest.mark.parametrize("name", ["ppo_sb3.py", "her_sb3.py", "learning_tier.py"])
+@pytest.mark.parametrize("missing", ["torch", "stable_baselines3"])
+def test_an_sb3_example_without_its_extra_says_what_to_install(name: str, missing: str) -> None:
+    # A newcomer running the README's PPO example before `make sb3-deps` got Python's bare
+    # "No module named 'torch'": the example now imports mazesim's SB3 adapter first, whose
+    # refusal names the extra, for pip and for a checkout.
+    hide = f"import sys, runpy; sys.modules[{missing!r}] = None; "
+    run = f"runpy.run_path({str(EXAMPLES / name)!r}, run_name='__main__')"
+    done = subprocess.run(
+        [sys.executable, "-c", hide + run], capture_output=True, text=True, timeout=TIMEOUT_S
+    )
+    assert done.returncode != 0
+    last = done.stderr.strip().splitlines()[-1]
+    assert last.startswith("mazesim.errors.MissingDependencyError:"), done.stderr[-2000:]
+    assert missing in last and 'pip install "mazesim[sb3]"' in last and "make sb3-deps" in last

@@ -36,9 +36,11 @@ from mazesim.errors import (
     _shown,
 )
 
-if importlib.util.find_spec("stable_baselines3") is None:
+_MISSING = [name for name in ("stable_baselines3", "torch") if not importlib.util.find_spec(name)]
+if _MISSING:
     raise MissingDependencyError(
-        'mazesim.integrations.sb3 needs Stable-Baselines3 2.x: pip install "mazesim[sb3]"'
+        f"mazesim.integrations.sb3 needs Stable-Baselines3 2.x and torch ({', '.join(_MISSING)}"
+        ' not installed): pip install "mazesim[sb3]", or in a checkout of mazesim: make sb3-deps'
     )
 
 import gymnasium  # noqa: E402
