@@ -39,8 +39,9 @@ from mazesim.webots.radio_devices import (
     emitter_from_fields,
     receiver_from_fields,
 )
-from mazesim.webots.robot_frames import Mount, robot_mount
+from mazesim.webots.robot_frames import Footprint, Mount, bounding_footprints, robot_mount
 from mazesim.webots.scanners import RayLidar, RayRangeFinder
+from mazesim.webots.scene import read_world_text
 from mazesim.webots.sensors import (
     DISTANCE_SENSOR_APERTURE,
     GPS,
@@ -204,7 +205,7 @@ def extension_device(simulation: RobotSimulation, entry: Mapping[str, Any]) -> D
         "Accelerometer": lambda: Accelerometer(name, simulation, mount, table),
         "Gyro": lambda: Gyro(name, simulation, mount, table),
         "InertialUnit": lambda: InertialUnit(name, simulation, mount, None),
-        "TouchSensor": lambda: TouchSensor(name, simulation),
+        "TouchSensor": lambda: TouchSensor(name, simulation, mount, _bumper(simulation, name)),
         "DistanceSensor": lambda: RayDistanceSensor(
             name, simulation, mount, table, str(fields.get("type", "generic")), aperture
         ),
@@ -245,6 +246,25 @@ def extension_device(simulation: RobotSimulation, entry: Mapping[str, Any]) -> D
     if kind in _RESOLVED_KINDS and isinstance(resolution, (int, float)):
         device._resolution = float(resolution)  # type: ignore[attr-defined]
     return device
+
+
+def _bumper(simulation: RobotSimulation, name: str) -> list[Footprint]:
+    """The boundingObject of the robot's TouchSensor ``name`` as the world file writes it, seen
+    from above in the sensor's frame (:func:`~mazesim.webots.robot_frames.bounding_footprints`);
+    empty without the file's text or such a node."""
+    report = simulation.report
+    fleet_text = getattr(simulation.fleet, "text", None) if simulation.fleet else None
+    text = fleet_text
+    if text is None and report.get("path"):
+        try:
+            text = read_world_text(str(report["path"]))
+        except OSError:
+            return []
+    if text is None:
+        return []
+    return bounding_footprints(
+        text, report.get("robot_line"), "TouchSensor", name, simulation.scene.nue, "touch sensor"
+    )
 
 
 def _still_mount(simulation: RobotSimulation) -> Mount | None:

@@ -24,13 +24,16 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-from mazesim.webots.frames import SLOT_ORIGINS, rotation_matrix
-from mazesim.webots.scene import Scene, SceneNode
+from mazesim.webots.frames import SLOT_ORIGINS, nue_to_enu, rotation_matrix
+from mazesim.webots.proto.syntax import line_numbers, nodes_in_order, parse_nodes
+from mazesim.webots.scene import Scene, SceneNode, _definitions
 
 __all__ = [
     "SLOT_ORIGINS",
+    "Footprint",
     "Mount",
     "RobotShape",
+    "bounding_footprints",
     "carried_shapes",
     "infrared_reflectance",
     "robot_mount",
@@ -339,3 +342,100 @@ def _colour(appearance: SceneNode | None) -> tuple[float, float, float] | None:
         return None
     red, green, blue = (min(1.0, max(0.0, float(b) + float(g))) for b, g in zip(base, glow))
     return (red, green, blue)
+
+
+@dataclass(frozen=True)
+class Footprint:
+    """A collision shape seen from above, in its device's frame (x forward, y left, m): a box
+    of half sides ``half`` turned ``yaw`` about its centre (x, y), or a disc of ``radius`` when
+    ``half`` is None (a Cylinder, Capsule or Sphere, taken upright)."""
+
+    x: float
+    y: float
+    yaw: float
+    half: tuple[float, float] | None
+    radius: float
+
+
+#: Webots' defaults of the geometries a boundingObject may hold (reference manual: Box
+#: ``size 0.1 0.1 0.1``, Cylinder, Capsule and Sphere ``radius`` 1).
+_BOX_SIZE = (0.1, 0.1, 0.1)
+_ROUND_RADIUS = 1.0
+
+
+def bounding_footprints(
+    text: str, robot_line: int | None, kind: str, name: str, nue: bool, default_name: str = ""
+) -> list[Footprint]:
+    """The ``boundingObject`` of the device node of type ``kind`` named ``name`` that the
+    robot node on ``robot_line`` of a world's ``text`` holds (among its children or in its
+    slots), seen from above in the device's frame: each Box, Cylinder, Capsule and Sphere,
+    placed by the Pose, Transform and Group nodes around it (a turn about the vertical kept,
+    a tilt left out). Empty when the file writes no such node (a device a PROTO holds) or the
+    node has no boundingObject. A node without a ``name`` field is named ``default_name``."""
+    if robot_line is None:
+        return []
+    tree = parse_nodes(text.lstrip("\ufeff"), "<world>", max_depth=None)
+    every = list(nodes_in_order(tree))
+    line_of = line_numbers(text.lstrip("\ufeff"))
+    robot = next(
+        (n for n in every if n.use_name is None and line_of(n.type_start) == robot_line), None
+    )
+    if robot is None:
+        return []
+    defined = _definitions(every)
+    inside = nodes_in_order(n for item in robot.fields for n in item.nodes)
+    for node in inside:
+        named = node.field("name")
+        own_name = named.string() if named is not None else None
+        if node.type_name != kind or (own_name or default_name) != name:
+            continue
+        bounding = node.field("boundingObject")
+        if bounding is None or not bounding.nodes:
+            return []
+        return _footprints(bounding.nodes[0], defined, nue)
+    return []
+
+
+def _footprints(top: Any, defined: dict[int, Any], nue: bool) -> list[Footprint]:
+    """The footprints of a boundingObject's node (:func:`bounding_footprints`)."""
+    found: list[Footprint] = []
+    pending = [(top, 0.0, 0.0, 0.0, 0)]
+    while pending:
+        node, x, y, yaw, depth = pending.pop()
+        if node.use_name is not None:
+            node = defined.get(id(node))
+        if node is None or depth > 64:
+            continue
+        kind = node.type_name
+        c, s = math.cos(yaw), math.sin(yaw)
+        if kind == "Shape":
+            geometry = node.field("geometry")
+            pending.extend((n, x, y, yaw, depth + 1) for n in (geometry.nodes if geometry else []))
+        elif kind == "Box":
+            size = _numbers(node, "size", 3) or _BOX_SIZE
+            sx, sy = (size[2], size[0]) if nue else (size[0], size[1])
+            found.append(Footprint(x, y, yaw, (abs(sx) / 2.0, abs(sy) / 2.0), 0.0))
+        elif kind in ("Cylinder", "Capsule", "Sphere"):
+            radius = (_numbers(node, "radius", 1) or (_ROUND_RADIUS,))[0]
+            found.append(Footprint(x, y, yaw, None, abs(radius)))
+        elif kind in ("Pose", "Transform", "Group"):
+            dx, dy, turn = 0.0, 0.0, 0.0
+            if (at := _numbers(node, "translation", 3)) is not None:
+                dx, dy, _ = nue_to_enu(*at) if nue else at
+            if (rotation := _numbers(node, "rotation", 4)) is not None:
+                axis = nue_to_enu(*rotation[:3]) if nue else rotation[:3]
+                length = math.sqrt(sum(v * v for v in axis)) or 1.0
+                if abs(abs(axis[2]) / length - 1.0) <= UPRIGHT:
+                    turn = math.copysign(rotation[3], axis[2])
+            children = node.field("children")
+            pending.extend(
+                (n, x + c * dx - s * dy, y + s * dx + c * dy, yaw + turn, depth + 1)
+                for n in (children.nodes if children else [])
+            )
+    return found
+
+
+def _numbers(node: Any, name: str, count: int) -> tuple[float, ...] | None:
+    """The first ``count`` numbers of a parsed node's field, or None."""
+    item = node.field(name)
+    return item.numbers(count) if item is not None else None

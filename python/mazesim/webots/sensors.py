@@ -29,6 +29,7 @@ from mazesim.webots.devices import (
 from mazesim.webots.frames import Axes, axes_or_none, enu_to_nue, nue_to_enu
 from mazesim.webots.lights import irradiance
 from mazesim.webots.node_types import node_type
+from mazesim.webots.robot_frames import Footprint
 from mazesim.webots.walls_now import WallsNow
 
 if TYPE_CHECKING:
@@ -405,8 +406,17 @@ class LightSensor(_Tabled, _ScalarSensor):
         return self._table(light, self._rng)
 
 
+#: How close (m) a bumper's bounding object comes to a wall, a movable body or another robot
+#: for their contact: the bodies mazesim's contacts stop stand this near at most.
+TOUCH_TOLERANCE = 0.001
+
+
 class TouchSensor(_ScalarSensor):
-    """A bumper: 1 while the robot touches a wall, else 0."""
+    """A bumper: 1 while its bounding object touches a wall, a movable body or another robot,
+    else 0 (reference manual, TouchSensor: a bumper reads 1 on a collision of its own
+    ``boundingObject``). ``footprints`` are that bounding object seen from above, in the
+    device's frame, placed by ``mount``; a bumper whose bounding object the world file does not
+    give (one a PROTO holds) reads the whole body's contact instead."""
 
     _node_type = node_type("TOUCH_SENSOR")
 
@@ -415,8 +425,78 @@ class TouchSensor(_ScalarSensor):
     FORCE3D = 2
     _api = "wb_touch_sensor"
 
+    def __init__(
+        self,
+        name: str,
+        simulation: RobotSimulation,
+        mount: DeviceMount | None = None,
+        footprints: Sequence[Footprint] = (),
+    ) -> None:
+        super().__init__(name, simulation)
+        self._mount = mount or DeviceMount()
+        self._footprints = list(footprints)
+        self._walls = WallsNow(simulation)
+
     def _read(self) -> float:
-        return 1.0 if self._simulation.simulator.colliding else 0.0
+        simulator = self._simulation.simulator
+        if not self._footprints:
+            return 1.0 if simulator.colliding else 0.0
+        x, y, heading = self._mount.world_pose(simulator.pose)
+        c, s = math.cos(heading), math.sin(heading)
+        placed = [
+            Footprint(
+                x + c * f.x - s * f.y, y + s * f.x + c * f.y, heading + f.yaw, f.half, f.radius
+            )
+            for f in self._footprints
+        ]
+        walls = self._walls.walls()
+        boxes = [
+            Footprint(
+                float(cx), float(cy), math.atan2(float(sn), float(cs)), (float(hx), float(hy)), 0.0
+            )
+            for (cx, cy), (hx, hy), cs, sn in zip(walls.center, walls.half, walls.cos, walls.sin)
+        ]
+        others = boxes + self._robots_now() + self._bodies_now()
+        touching = any(
+            _touch(mine, other)
+            for mine in placed
+            for other in others
+            if math.hypot(other.x - mine.x, other.y - mine.y)
+            <= _reach(mine) + _reach(other) + TOUCH_TOLERANCE
+        )
+        return 1.0 if touching else 0.0
+
+    def _robots_now(self) -> list[Footprint]:
+        """The other robots' bodies now, as discs: those of a simulator shared with them, else
+        the e-pucks of a world run; none in a run of one robot."""
+        simulation = self._simulation
+        others = getattr(simulation.simulator, "other_robots", None)
+        if others is not None:
+            return [Footprint(float(x), float(y), 0.0, None, float(r)) for x, y, r in others()]
+        if simulation.fleet is None:
+            return []
+        from mazesim.webots.shared_world import E_PUCK_BODY_RADIUS
+
+        robots = simulation.report.get("robots") or []
+        return [
+            Footprint(float(pose[0]), float(pose[1]), 0.0, None, E_PUCK_BODY_RADIUS)
+            for index, pose in enumerate(simulation.fleet.poses())
+            if pose is not None and index != simulation.robot_index
+            if index < len(robots) and robots[index].get("profile") is not None
+        ]
+
+    def _bodies_now(self) -> list[Footprint]:
+        """The world's movable bodies where they are now."""
+        from mazesim.webots.solids import world_objects
+
+        found = []
+        for (x, y, yaw), body in world_objects(self._simulation).drawn_bodies():
+            if body.get("kind") == "circle":
+                found.append(Footprint(x, y, yaw, None, float(body["radius"])))
+            else:
+                width, depth = (float(v) / 2.0 for v in body["size"])
+                found.append(Footprint(x, y, yaw, (width, depth), 0.0))
+        return found
 
     def getValues(self) -> list[float]:
         """A force-3d sensor's reading: zeros (a bumper has no force vector)."""
@@ -431,6 +511,65 @@ class TouchSensor(_ScalarSensor):
     def getLookupTable(self) -> list[float]:
         """The empty table of a bumper."""
         return []
+
+
+def _reach(shape: Footprint) -> float:
+    """How far a footprint reaches from its centre."""
+    return shape.radius + (math.hypot(*shape.half) if shape.half is not None else 0.0)
+
+
+def _corners(shape: Footprint) -> list[tuple[float, float]]:
+    """A box footprint's four corners (a disc's centre)."""
+    if shape.half is None:
+        return [(shape.x, shape.y)]
+    c, s = math.cos(shape.yaw), math.sin(shape.yaw)
+    hx, hy = shape.half
+    return [
+        (shape.x + c * u - s * v, shape.y + s * u + c * v)
+        for u, v in ((hx, hy), (-hx, hy), (-hx, -hy), (hx, -hy))
+    ]
+
+
+def _gap_along(axis: tuple[float, float], first: Footprint, second: Footprint) -> float:
+    """How far apart two footprints are along a unit ``axis`` (negative where they overlap)."""
+    spans = []
+    for shape in (first, second):
+        ends = [axis[0] * px + axis[1] * py for px, py in _corners(shape)]
+        spans.append((min(ends) - shape.radius, max(ends) + shape.radius))
+    (low_a, high_a), (low_b, high_b) = spans
+    return max(low_b - high_a, low_a - high_b)
+
+
+def _touch(first: Footprint, second: Footprint) -> bool:
+    """Whether two footprints come within :data:`TOUCH_TOLERANCE` of each other: their gap
+    along each box's sides and along the line between their centres (which separates a disc
+    from a box's corner, or two discs) is at most the tolerance somewhere on every axis."""
+    axes = []
+    for shape in (first, second):
+        if shape.half is not None:
+            c, s = math.cos(shape.yaw), math.sin(shape.yaw)
+            axes += [(c, s), (-s, c)]
+    for shape, other in ((first, second), (second, first)):
+        if shape.half is None:
+            # The axis from a disc's centre to the nearest point of the other footprint.
+            px, py = _nearest(other, shape.x, shape.y)
+            dx, dy = px - shape.x, py - shape.y
+            length = math.hypot(dx, dy)
+            if length > 0.0:
+                axes.append((dx / length, dy / length))
+    return all(_gap_along(axis, first, second) <= TOUCH_TOLERANCE for axis in axes)
+
+
+def _nearest(shape: Footprint, x: float, y: float) -> tuple[float, float]:
+    """The point of a box footprint (a disc's centre) nearest to ``x``, ``y``."""
+    if shape.half is None:
+        return shape.x, shape.y
+    c, s = math.cos(shape.yaw), math.sin(shape.yaw)
+    u = c * (x - shape.x) + s * (y - shape.y)
+    v = -s * (x - shape.x) + c * (y - shape.y)
+    u = max(-shape.half[0], min(shape.half[0], u))
+    v = max(-shape.half[1], min(shape.half[1], v))
+    return shape.x + c * u - s * v, shape.y + s * u + c * v
 
 
 #: A distance sensor whose x axis points more than this below the horizontal (rad, 45 degrees)
