@@ -8,6 +8,8 @@ from __future__ import annotations
 import functools
 from pathlib import Path
 
+import pytest
+
 from swarm_project import run_project
 
 PROJECT = Path(__file__).resolve().parent.parent / "data" / "webots-touch-bumpers"
@@ -42,3 +44,33 @@ def test_side_bumpers_turned_on_the_robot_read_the_wall_on_their_side(tmp_path: 
     rows = logs["bumped"]["rows"]
     assert len(rows) > 10
     assert all(row == {"left bumper": 1.0, "right bumper": 0.0} for row in rows)
+
+
+def test_a_bumper_s_bounding_object_through_use_and_transform_is_placed_in_its_frame() -> None:
+    """A ``USE``d Cylinder in a Transform turned a quarter left and moved: a disc of the
+    cylinder's radius where the Transform puts it, in the sensor's frame; a node without a
+    boundingObject, or one the file does not write, has none."""
+    from mazesim.webots.robot_frames import bounding_footprints
+
+    text = """#VRML_SIM R2023b utf8
+DEF ROUND Cylinder { radius 0.01 height 0.01 }
+Robot {
+  children [
+    TouchSensor {
+      name "nose"
+      boundingObject Transform {
+        translation 0.02 0 0
+        rotation 0 0 1 1.5708
+        children [ Pose { translation 0.01 0 0 children [ USE ROUND ] } ]
+      }
+    }
+    TouchSensor { }
+  ]
+}
+"""
+    (nose,) = bounding_footprints(text, 3, "TouchSensor", "nose", False)
+    assert (nose.x, nose.y, nose.half, nose.radius) == pytest.approx(
+        (0.02, 0.01, None, 0.01), abs=1e-6
+    )
+    assert bounding_footprints(text, 3, "TouchSensor", "touch sensor", False, "touch sensor") == []
+    assert bounding_footprints(text, 3, "TouchSensor", "tail", False) == []
