@@ -41,7 +41,7 @@ import numpy.typing as npt
 
 from mazesim.envs.goal import MazeGoalEnv, MazeGoalVectorEnv
 from mazesim.envs.maze_env import EPuckMazeEnv
-from mazesim.envs.options import MAX_ENV_CELLS, EnvOptions
+from mazesim.envs.options import MAX_ENV_CELLS, EnvOptions, _reaches_outside
 from mazesim.envs.vector import EPuckMazeVectorEnv
 from mazesim.errors import InvalidArgumentError, WrongTypeError, _a_type, _shown
 
@@ -223,44 +223,20 @@ def _maze_env(env: Any) -> EPuckMazeEnv | EPuckMazeVectorEnv:
     return target
 
 
-#: How far, in metres, a maze may reach past the bounds its space holds (float32 rounding).
-_BOUNDS_TOLERANCE = 1e-6
-
-
-def _position_bounds(env: Any) -> tuple[float, float, float, float] | None:
-    """The x, y bounds in metres of the positions ``env``'s observation space holds (min x,
-    min y, max x, max y), or None when it observes no position in metres."""
-    target = getattr(env, "unwrapped", env)
-    space = getattr(target, "single_observation_space", target.observation_space)
-    if isinstance(target, (MazeGoalEnv, MazeGoalVectorEnv)):
-        box = space["achieved_goal"]
-        return (float(box.low[0]), float(box.low[1]), float(box.high[0]), float(box.high[1]))
-    names = target.observation_names
-    if target._features is not None or "x" not in names:  # the features' x is 0 to 1
-        return None
-    x, y = names.index("x"), names.index("y")
-    low, high = space.low, space.high
-    return (float(low[x]), float(low[y]), float(high[x]), float(high[y]))
-
-
 def _check_stages_fit(env: Any, options: EnvOptions, sizes: Sequence[tuple[int, int]]) -> None:
-    """Refuses stages whose mazes reach outside the positions ``env``'s space holds."""
-    held = _position_bounds(env)
+    """Refuses stages whose mazes reach outside the positions ``env``'s space holds (the bounds
+    each drawn world is checked against at its reset)."""
+    held = _maze_env(env)._held_bounds
     if held is None:
         return
     for size in sizes:
-        xmin, ymin, xmax, ymax = dataclasses.replace(options, maze_size=size).random_maze(0).bounds
-        if (
-            xmin < held[0] - _BOUNDS_TOLERANCE
-            or ymin < held[1] - _BOUNDS_TOLERANCE
-            or xmax > held[2] + _BOUNDS_TOLERANCE
-            or ymax > held[3] + _BOUNDS_TOLERANCE
-        ):
+        bounds = dataclasses.replace(options, maze_size=size).random_maze(0).bounds
+        if _reaches_outside(bounds, held):
             largest = max(sizes, key=lambda s: s[0] * s[1])
             raise InvalidArgumentError(
                 "expected every stage's mazes to lie within the positions the env's observation "
                 f"space holds (x {held[0]:.3f} to {held[2]:.3f} m, y {held[1]:.3f} to "
                 f"{held[3]:.3f} m, its maze_size {options.maze_size}); found the stage {size}, "
-                f"whose mazes reach x {xmax:.3f} m, y {ymax:.3f} m: make the env with "
+                f"whose mazes reach x {bounds[2]:.3f} m, y {bounds[3]:.3f} m: make the env with "
                 f"maze_size={largest}, the curriculum's largest mazes"
             )

@@ -78,6 +78,7 @@ class MazeGoalEnv(gymnasium.Env[Observation, Any]):
         self.observation_space = _goal_space(  # type: ignore[assignment]
             self.maze.observation_space, self.maze.world
         )
+        self.maze._held_bounds = _goal_bounds(self.maze.world)
         self._radius = 0.0
 
     def compute_reward(
@@ -193,7 +194,7 @@ class MazeGoalVectorEnv(VectorEnv[Observation, Any, Any]):
         self.mazes = EPuckMazeVectorEnv(
             num_envs, max_episode_steps=max_episode_steps, render_mode=render_mode, **options
         )
-        world = self.mazes.options.sample_world()
+        world = self.mazes._worlds[0]  # its sample world: a sampler is not called again
         _check_goal(world, world.goal, self.mazes.options)
         self.num_envs = self.mazes.num_envs
         self.render_mode = render_mode
@@ -201,6 +202,7 @@ class MazeGoalVectorEnv(VectorEnv[Observation, Any, Any]):
         self.single_action_space = self.mazes.single_action_space
         self.action_space = self.mazes.action_space
         self.single_observation_space = _goal_space(self.mazes.single_observation_space, world)
+        self.mazes._held_bounds = _goal_bounds(world)
         self.observation_space = batch_space(self.single_observation_space, self.num_envs)
         self._discs = np.zeros((self.num_envs, 3))
         self._restarting = np.zeros(self.num_envs, dtype=bool)
@@ -339,14 +341,26 @@ def _check_goal(world: World, goal: tuple[float, float, float] | None, options: 
 
 def _goal_space(observation_space: gymnasium.Space[Any], world: World) -> gymnasium.spaces.Dict:
     """The goal env's observation space; random mazes of one size share their bounds, so the
-    sample maze's hold for every episode."""
-    bounds = world.bounds
-    low = np.array(bounds[:2], dtype=np.float32)
-    high = np.array(bounds[2:], dtype=np.float32)
-    goal_space = gymnasium.spaces.Box(low, high, dtype=np.float32)
+    sample maze's hold for every episode (a drawn world outside them is refused at its reset)."""
+    goal_space = _goal_box(world)
     return gymnasium.spaces.Dict(
         {"observation": observation_space, "achieved_goal": goal_space, "desired_goal": goal_space}
     )
+
+
+def _goal_box(world: World) -> gymnasium.spaces.Box:
+    """The space of the goals, x and y in metres within ``world``'s bounds."""
+    bounds = world.bounds
+    low = np.array(bounds[:2], dtype=np.float32)
+    high = np.array(bounds[2:], dtype=np.float32)
+    return gymnasium.spaces.Box(low, high, dtype=np.float32)
+
+
+def _goal_bounds(world: World) -> tuple[float, float, float, float]:
+    """The x, y bounds in metres of the goals the space of ``world`` holds: within the pose's of
+    the raw readings, so the maze env checks each drawn world against these."""
+    box = _goal_box(world)
+    return (float(box.low[0]), float(box.low[1]), float(box.high[0]), float(box.high[1]))
 
 
 def _goal_reward(

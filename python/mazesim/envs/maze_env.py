@@ -175,6 +175,9 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
         self._weights = (weights.progress, weights.collision, weights.goal)
         features = self._features
         self.observation_space = self._layout.space if features is None else features.space
+        # The positions in metres the observation space holds (the pose of the raw readings; a
+        # goal env narrows them to its goals'): each drawn world must lie within them.
+        self._held_bounds = self._layout.position_bounds if features is None else None
         self.action_space = self._actions.space
         width = self._layout.sensor_width
         self._low = np.ascontiguousarray(self._layout.low[:width])
@@ -210,7 +213,7 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
         self._check_open()
         check_options(options)
         super().reset(seed=check_seed(seed))
-        world, drawn = self.options.next_world(self.np_random)
+        world, drawn = self.options.next_world(self.np_random, self._held_bounds)
         episode_seed = draw_seed(self.np_random)
         simulator = self._simulator
         fresh = world is not None or simulator is None

@@ -70,6 +70,13 @@ WorldOption = Union[str, "os.PathLike[str]", World, dict[str, str], WorldSampler
 #: env's own.
 SAMPLER_PROBE_SEED = 0
 
+#: The x, y bounds in metres (min x, min y, max x, max y) of the positions an observation space
+#: holds, or of a world.
+_PositionBounds = tuple[float, float, float, float]
+
+#: How far, in metres, a world may reach past the bounds a space holds (float32 rounding).
+_BOUNDS_TOLERANCE = 1e-6
+
 
 #: Keywords of a vector env that reach a single env when given to ``make_vec`` in sync or async
 #: mode, where gymnasium takes them in ``vector_kwargs``.
@@ -310,18 +317,64 @@ class EnvOptions:
         width, height = self.maze_size
         return generate_maze(width, height, seed=seed, junction=False)
 
-    def next_world(self, rng: np.random.Generator) -> tuple[World | None, StartAndGoal | None]:
+    def next_world(
+        self, rng: np.random.Generator, held: _PositionBounds | None = None
+    ) -> tuple[World | None, StartAndGoal | None]:
         """The world of the next episode, a random maze or the world sampler's world drawn from
         ``rng`` (None to keep the fixed world: nothing is drawn for it), and its start and goal,
-        drawn next if ``start_goal="random"`` (None for the world's own)."""
+        drawn next if ``start_goal="random"`` (None for the world's own).
+
+        Raises:
+            InvalidArgumentError: As :meth:`sampled_world`, or ``held`` (the positions in metres
+                the env's observation space holds; None when it observes none) does not hold
+                the drawn world.
+        """
         if self.world is not None:
             world = self.world
         elif self.world_sampler is not None:
             world = self.sampled_world(rng)
         else:
             world = self.random_maze(draw_seed(rng))
+        if held is not None and self.world is None:
+            self._check_world_held(world, held)
         drawn = draw_start_and_goal(world, rng) if self.start_goal == "random" else None
         return (None if self.world is not None else world), drawn
+
+    def _check_world_held(self, world: World, held: _PositionBounds) -> None:
+        """Refuses a drawn world reaching outside the positions the observation space holds."""
+        bounds = world.bounds
+        if not _reaches_outside(bounds, held):
+            return
+        source = (
+            f"the world sampler {_callable_name(self.world_sampler)}'s draw with an RNG of seed "
+            f"{SAMPLER_PROBE_SEED} when the env was made"
+            if self.world_sampler is not None
+            else "the random maze of the maze_size the env was made with"
+        )
+        remedy = (
+            "draw mazes of one size, or let that first draw be of the largest mazes drawn"
+            if self.world_sampler is not None
+            else "make the env with a maze_size as large as any its episodes draw"
+        )
+        raise InvalidArgumentError(
+            "expected each episode's world to lie within the positions in metres the env's "
+            f"observation space holds (x {held[0]:.3f} to {held[2]:.3f} m, y {held[1]:.3f} to "
+            f"{held[3]:.3f} m, from {source}); found {_shown(world.name)}, reaching x "
+            f"{bounds[0]:.3f} to {bounds[2]:.3f} m, y {bounds[1]:.3f} to {bounds[3]:.3f} m: "
+            f"{remedy}"
+        )
+
+
+def _reaches_outside(bounds: _PositionBounds, held: _PositionBounds) -> bool:
+    """Whether a world of ``bounds`` reaches outside the positions ``held`` (both min x, min y,
+    max x, max y in metres), beyond float32 rounding: the one check of every drawn world and of
+    every maze-size curriculum stage."""
+    return (
+        bounds[0] < held[0] - _BOUNDS_TOLERANCE
+        or bounds[1] < held[1] - _BOUNDS_TOLERANCE
+        or bounds[2] > held[2] + _BOUNDS_TOLERANCE
+        or bounds[3] > held[3] + _BOUNDS_TOLERANCE
+    )
 
 
 def _check_cells(world: World) -> None:

@@ -127,6 +127,16 @@ class ObservationLayout:
         """Number of values in one observation."""
         return len(self.names)
 
+    @property
+    def position_bounds(self) -> tuple[float, float, float, float] | None:
+        """The x, y bounds in metres (min x, min y, max x, max y) of the poses the space holds,
+        or None without ``include_pose``."""
+        if not self.include_pose:
+            return None
+        x, y = self.names.index("x"), self.names.index("y")
+        low, high = self.low, self.high
+        return (float(low[x]), float(low[y]), float(high[x]), float(high[y]))
+
     def assemble(
         self, sensors: npt.NDArray[np.float32], poses: npt.NDArray[np.float32]
     ) -> npt.NDArray[np.float32]:

@@ -179,6 +179,8 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
         )
         features = self._features
         self.single_observation_space = self._layout.space if features is None else features.space
+        # The positions in metres the observation space holds, as the single env's.
+        self._held_bounds = self._layout.position_bounds if features is None else None
         self.single_action_space = self._actions.space
         n = self.num_envs
         # The batch first: it checks num_envs against the memory it needs before the spaces
@@ -501,7 +503,7 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
             rng = self._rngs[i]
             if rng is None:
                 rng = self._rngs[i] = seeding.np_random()[0]
-            world, drawn = self.options.next_world(rng)
+            world, drawn = self.options.next_world(rng, self._held_bounds)
             seeds[i] = episode_seed = draw_seed(rng)
             if world is not None:
                 batch.set_world(int(i), world, episode_seed)
