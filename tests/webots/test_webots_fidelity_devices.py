@@ -103,6 +103,9 @@ def test_a_turret_lidar_measures_the_arena_around_it(tmp_path: Path) -> None:
     # Whether Webots' first point looks at +fov/2 or half a step inside it, the farthest is
     # within 5 mm of the ray at 45 degrees.
     assert log["farthest"] == pytest.approx(0.3 * math.sqrt(2.0), abs=0.006)
+    # Read between enable and the first step (a public project's Gymnasium env does, in its
+    # reset): Webots hands the image memory over at the start, so zeros, not None.
+    assert log["before"] == [72, [0.0]]
 
 
 def test_a_turret_range_finder_gives_the_depth_of_the_wall_ahead(tmp_path: Path) -> None:

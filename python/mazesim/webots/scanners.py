@@ -35,6 +35,16 @@ def _number(fields: Mapping[str, Any], name: str, default: float) -> float:
     return float(value) if isinstance(value, (int, float)) else default
 
 
+def _range_image(image: object, size: int) -> list[float]:
+    """A range image as a controller reads it: the last period's, or, before the first period
+    ends, ``size`` zeros. Webots hands a lidar's or range finder's image memory to the
+    controller when it starts (``wb_lidar_get_range_image`` returns it without a check that a
+    period has passed, libController's lidar.c), so a controller that reads it between
+    ``enable`` and its first step gets the memory's zeros, not NULL: a public project's
+    Gymnasium env reads its lidar in ``reset`` before stepping."""
+    return list(image) if isinstance(image, list) else [0.0] * size
+
+
 class _Rays:
     """Horizontal distances to the walls along rays turned ``angles`` (rad) from a mount."""
 
@@ -90,9 +100,8 @@ class RayLidar(Lidar):
         return ranges
 
     def getRangeImage(self) -> list[float] | None:  # type: ignore[override]
-        """Every layer's ranges (m), the top layer first; None before the first period."""
-        image = self._reading("get_range_image")
-        return list(image) if isinstance(image, list) else None
+        """Every layer's ranges (m), the top layer first; zeros before the first period."""
+        return _range_image(self._reading("get_range_image"), self._points * self._layers)
 
     def getLayerRangeImage(self, layer: int) -> list[float] | None:  # type: ignore[override]
         """Layer ``layer``'s ranges (m), or None."""
@@ -161,9 +170,8 @@ class RayRangeFinder(RangeFinder):
         return row * self._height
 
     def getRangeImage(self, data_type: str = "list") -> list[float] | None:  # type: ignore[override]
-        """The depths (m), row after row; None before the first period."""
-        image = self._reading("get_range_image")
-        return list(image) if isinstance(image, list) else None
+        """The depths (m), row after row; zeros before the first period."""
+        return _range_image(self._reading("get_range_image"), self._width * self._height)
 
     def getWidth(self) -> int:
         """The node's ``width``."""

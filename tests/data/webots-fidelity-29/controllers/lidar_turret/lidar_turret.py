@@ -11,6 +11,7 @@ robot = Robot()
 time_step = int(robot.getBasicTimeStep())
 lidar = robot.getDevice("lidar")
 lidar.enable(time_step)
+before = lidar.getRangeImage()  # read before the first step, as a Gymnasium env's reset does
 for _ in range(3):
     robot.step(time_step)
 ranges = lidar.getRangeImage()
@@ -23,6 +24,7 @@ log = {
     "count": len(ranges or []),
     "nearest": min(finite) if finite else None,
     "farthest": max(finite) if finite else None,
+    "before": [len(before), sorted(set(before))] if before is not None else None,
 }
 with open(os.path.join(os.environ.get("SWARM_LOG", "."), f"{robot.getName()}.json"), "w") as out:
     json.dump(log, out)
