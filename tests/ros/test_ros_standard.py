@@ -325,7 +325,7 @@ def test_rviz_opens_with_the_saved_config_only_where_it_can(
     assert expected.format(config=config) in result.stdout
 
 
-def test_the_ros_1_bridge_refuses_a_world_of_several_robots() -> None:
+def test_the_ros_1_demo_refuses_a_world_of_several_robots() -> None:
     from mazesim.ros.bridge import refuse_several_robots
 
     world = mazesim.World.from_toml(
@@ -334,7 +334,7 @@ def test_the_ros_1_bridge_refuses_a_world_of_several_robots() -> None:
         '[[robots]]\nname = "east"\nx = 0.2\ny = 0.0\n'
     )
     with pytest.raises(
-        InvalidArgumentError, match=r"holds 2 \(west, east\): run it with 'mazesim ros2"
+        InvalidArgumentError, match=r"holds 2 \(west, east\): run 'mazesim ros bridge'"
     ):
         refuse_several_robots(world)
     refuse_several_robots(mazesim.load_world("seed-maze"))  # one robot: accepted

@@ -44,6 +44,9 @@ is already set, and sets ``control_step_ms`` in its namespace (next to its topic
 perform-learning node dead-reckons its sub-tasks with it. It logs the step at which the robot first
 reaches the goal, and says in its last log line whether it did.
 
+A world of several robots is served by :mod:`mazesim.ros.several`: each robot's topics in a
+namespace of its name, one ``/clock``.
+
 It offers Gazebo's reset services, ``/gazebo/reset_simulation`` and ``/gazebo/reset_world``
 (``std_srvs/Empty``; :mod:`mazesim.ros.resets`, shared with the ROS 2 bridge): the state after
 the reset goes out before the call is answered.
@@ -81,6 +84,7 @@ from mazesim.ros.lockstep import (
     stamp_nanoseconds,
 )
 from mazesim.ros.resets import RESET_SIMULATION, RESETS, EpisodeResets, service_name
+from mazesim.ros.several import SeveralRobotsBridge, refuse_single_robot_settings
 from mazesim.ros.standard import StandardPublishers
 
 __all__ = [
@@ -707,7 +711,8 @@ class _Remembered:
 
 
 def refuse_several_robots(world: World) -> None:
-    """Refuses a world of several robots: the ROS 1 bridge simulates one.
+    """Refuses a world of several robots for the ROS 1 demo, which drives one robot (the bridge
+    serves several, each in its namespace: :mod:`mazesim.ros.several`).
 
     Raises:
         InvalidArgumentError: The world lists more than one robot.
@@ -716,9 +721,9 @@ def refuse_several_robots(world: World) -> None:
     if len(robots) > 1:
         names = ", ".join(str(robot["name"]) for robot in robots)
         raise InvalidArgumentError(
-            f"the ROS 1 bridge simulates one robot; world {_shown(world.name)} holds {len(robots)} "
-            f"({names}): run it with 'mazesim ros2 bridge', which publishes each robot in its "
-            "own namespace, or give a world of one robot"
+            f"the ROS 1 demo drives one robot; world {_shown(world.name)} holds {len(robots)} "
+            f"({names}): run 'mazesim ros bridge', which serves each robot in its own namespace, "
+            "with a controller per robot, or give a world of one robot"
         )
 
 
@@ -743,18 +748,26 @@ def run_bridge(
         for field in fields(BridgeSettings):
             rospy.set_param("~" + field.name, getattr(settings, field.name))
         world = mazesim.load_world(settings.world)
-        refuse_several_robots(world)
-        if settings.stop_at_goal and world.goal is None:
+        several = len(world.robots) > 1
+        if several:
+            refuse_single_robot_settings(settings, world.name)
+        elif settings.stop_at_goal and world.goal is None:
             raise InvalidArgumentError(
                 f"parameter stop_at_goal is true but world {_shown(world.name)} has no goal"
             )
         simulator = Simulator(world, robot=settings.robot, seed=settings.seed, noise=settings.noise)
         # Before the bridge listens for commands: a controller that sees it connected finds it.
         rospy.set_param(topics.CONTROL_STEP_PARAM, simulator.control_step_ms)
-        bridge = Bridge(ros, simulator, settings, stop)
+        bridge: Bridge | SeveralRobotsBridge = (
+            SeveralRobotsBridge(ros, simulator, settings, stop)
+            if several
+            else Bridge(ros, simulator, settings, stop)
+        )
     except MazesimError as error:
         rospy.signal_shutdown(f"bad settings: {error}")
         raise
+    if isinstance(bridge, SeveralRobotsBridge):
+        return _run_several(ros, bridge)
     robot = simulator.robot
     rospy.loginfo(
         "mazesim bridge: world %s, robot %s, seed %d, %s%s; sensors = %s",
@@ -794,6 +807,35 @@ def run_bridge(
             bridge.idle_steps,
             bridge.deadline.steps,
             bridge.hold.skipped,
+        )
+        rospy.signal_shutdown("mazesim bridge stopped")
+    return 0
+
+
+def _run_several(ros: Any, bridge: SeveralRobotsBridge) -> int:
+    """Runs the bridge on a world of several robots (:mod:`mazesim.ros.several`)."""
+    rospy = ros.rospy
+    settings = bridge.settings
+    rospy.loginfo(
+        "mazesim bridge: world %s, %d robots (%s), seed %d, %s%s",
+        bridge.simulator.world.name,
+        len(bridge.robots),
+        ", ".join(robot.namespace for robot in bridge.robots),
+        settings.seed,
+        settings.mode,
+        "" if bridge.lockstep else f" x{settings.speed:g}",
+    )
+    try:
+        bridge.run()
+    finally:
+        steps, simulated = bridge.finish()
+        rospy.loginfo(
+            "mazesim bridge stopped: %d steps (%.2f s simulated) of %d robots; %d bad messages "
+            "ignored (their steps kept the wheel speeds)",
+            steps,
+            simulated,
+            len(bridge.robots),
+            sum(robot.held.refused for robot in bridge.robots),
         )
         rospy.signal_shutdown("mazesim bridge stopped")
     return 0

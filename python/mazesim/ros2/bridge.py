@@ -66,7 +66,7 @@ from mazesim.ros2.nodes import leaves_signals_as_found
 from mazesim.ros2.occupancy import map_topics, occupancy_grid
 from mazesim.ros2.parameters import ParameterServers, bridge_parameters
 from mazesim.ros2.qos import CLOCK, COMMAND, TF_STATIC, IncompatibleQos, TopicQos
-from mazesim.ros2.robots import RobotOf, robot_namespaces
+from mazesim.ros2.robots import RobotOf, robot_namespaces, step_rounds
 from mazesim.ros2.ros_args import RosArguments
 from mazesim.ros2.state import CLOCK_TOPIC, CLOCK_TYPE, StateTopics
 from mazesim.ros2.unpublished import UnpublishedTopics
@@ -553,16 +553,12 @@ class Ros2Bridge:
         (robots that are not keep their wheel speeds)."""
         for robot in self.robots:
             robot.pending.extend(robot.commands())
-        while not self.stop.is_set():
-            if not any(robot.pending for robot in self.robots):
-                return
-            if not all(robot.pending or not robot.driven() for robot in self.robots):
-                return
-            for robot in self.robots:
-                if robot.pending:
-                    robot.wheel_speeds = robot.pending.popleft()
+
+        def step() -> None:
             self.hold.start(self.stamp())
             self._step_held()
+
+        step_rounds(self.robots, self.stop, step)
 
     def _step_held(self) -> None:
         """Lockstep: one step, and with ``--command-period`` the further steps the command holds

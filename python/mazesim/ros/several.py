@@ -1,0 +1,279 @@
+"""The ROS 1 bridge on a world of several robots: each robot in a namespace of its own.
+
+As the e-puck's ROS 1 driver runs several robots (``multi_epuck.launch`` starts each robot's
+nodes in ``<group ns="epuck_robot_0">``), the bridge serves robot ``west`` of the world as
+``/west/sensors``, ``/west/pose`` and ``/west/sensor_data`` (robots with Sharp sensors), and reads
+its commands on ``/west/motor``, ``/west/action`` and ``/west/cmd_vel``, in the layouts of
+:mod:`mazesim.ros.topics` and :mod:`mazesim.ros.standard`; ``/clock`` is one for all, and so is
+``control_step_ms``. The namespaces are the ROS 2 bridge's (:func:`mazesim.ros.robots.
+robot_namespaces`: the robot's name, with what a ROS name may not hold replaced by ``_``).
+
+In ``lockstep`` the world steps once every robot whose command topics have a publisher connected
+has sent its command for the step (:func:`mazesim.ros.robots.next_round`, the rule of both
+bridges): a robot nobody drives keeps its wheel speeds (at first, none), and a robot that sends
+two commands before the others send one has the second stepped in the next step. A run is the
+in-process run of ``Simulator.step_robots`` with the same commands, whatever the order in which
+they arrive. When no step has come ``RESEND_S`` seconds after a state went out while a command
+publisher is connected, every robot's state goes out again (a controller that commanded before
+the bridge listened gets another). In ``realtime`` the world steps on its own with every robot's
+last wheel speeds.
+
+The single-robot bridge's ``command_period``, ``command_deadline``, ``stop_at_goal`` and ``bag``,
+the per-sensor ``Range`` topics, ``odom``, ``/tf``, ``scan`` and the reset services are not
+offered on several robots: the bridge refuses those settings rather than ignore them.
+"""
+
+from __future__ import annotations
+
+import threading
+import time
+from collections import deque
+from collections.abc import Callable
+from typing import Any
+
+from mazesim._core import Simulator
+from mazesim.actions import wheel_speeds
+from mazesim.errors import InvalidArgumentError, _shown
+from mazesim.ros import standard, topics
+from mazesim.ros._ros import publisher
+from mazesim.ros.lockstep import UnansweredState, stamp_nanoseconds
+from mazesim.ros.robots import RobotOf, robot_namespaces, step_rounds
+
+__all__ = ["RobotChannel", "SeveralRobotsBridge", "refuse_single_robot_settings"]
+
+#: Settings of the single-robot bridge a world of several robots does not take, with their
+#: value that means "off".
+_SINGLE_ROBOT_SETTINGS = {
+    "command_period": 0.0,
+    "command_deadline": 0.0,
+    "stop_at_goal": False,
+    "bag": "",
+}
+
+
+def refuse_single_robot_settings(settings: Any, world_name: str) -> None:
+    """Refuses the settings only the single-robot bridge serves.
+
+    Raises:
+        InvalidArgumentError: One of them is set.
+    """
+    for name, off in _SINGLE_ROBOT_SETTINGS.items():
+        value = getattr(settings, name)
+        if value != off:
+            raise InvalidArgumentError(
+                f"expected parameter {name} left out on world {_shown(world_name)} of several "
+                f"robots (the ROS 1 bridge serves it on a world of one robot); found "
+                f"{_shown(value)}"
+            )
+
+
+class RobotChannel:
+    """One robot's topics: its state publishers and command subscribers, in its namespace."""
+
+    def __init__(
+        self,
+        bridge: SeveralRobotsBridge,
+        view: RobotOf,
+        namespace: str,
+    ) -> None:
+        ros = bridge.ros
+        self.view = view
+        self.namespace = namespace
+        self.pending: deque[tuple[float, float]] = deque()
+        self.wheel_speeds = (0.0, 0.0)
+        self.held = topics.HeldCommand()
+        self.layouts = {
+            "sensors": bridge.layout(topics.sensor_names(view)),  # type: ignore[arg-type]
+            "pose": bridge.layout(["x", "y", "yaw", "time"]),
+        }
+        self.sensors = bridge.make_publisher(f"{namespace}/{topics.SENSORS_TOPIC}")
+        self.pose = bridge.make_publisher(f"{namespace}/{topics.POSE_TOPIC}")
+        self.sensor_data = None
+        if topics.has_sharp_sensors(view):  # type: ignore[arg-type]
+            names = [f"{name} cm" for name in view.robot.distance_sensor_names]
+            self.layouts["sensor_data"] = bridge.layout([*names, "checkpoint"])
+            self.sensor_data = bridge.make_publisher(f"{namespace}/{topics.SENSOR_DATA_TOPIC}")
+        robot = view.robot
+        # No queue limit: in lockstep every command is one step and none may be dropped.
+        self.subscribers = [
+            ros.rospy.Subscriber(
+                f"{namespace}/{topics.MOTOR_TOPIC}",
+                ros.Float64MultiArray,
+                lambda message: bridge.command(
+                    self, "motor", lambda: topics.motor_command(message.data)
+                ),
+                tcp_nodelay=True,
+            ),
+            ros.rospy.Subscriber(
+                f"{namespace}/{topics.ACTION_TOPIC}",
+                ros.String,
+                lambda message: bridge.command(
+                    self, "action", lambda: wheel_speeds(message.data, robot.max_wheel_speed)
+                ),
+                tcp_nodelay=True,
+            ),
+            ros.rospy.Subscriber(
+                f"{namespace}/{standard.CMD_VEL_TOPIC}",
+                ros.Twist,
+                lambda message: bridge.command(
+                    self,
+                    standard.CMD_VEL_TOPIC,
+                    lambda: standard.twist_wheel_speeds(message.linear.x, message.angular.z, robot),
+                ),
+                tcp_nodelay=True,
+            ),
+        ]
+
+    def driven(self) -> bool:
+        """Whether a publisher is connected to one of the robot's command topics."""
+        return any(subscriber.get_num_connections() > 0 for subscriber in self.subscribers)
+
+    def publish(self, bridge: SeveralRobotsBridge) -> list[tuple[Any, Any]]:
+        """Publishes the robot's state now; returns each publisher with its message."""
+        view = self.view
+        sent = [
+            (self.pose, bridge.array(self.layouts["pose"], topics.pose_values(view))),  # type: ignore[arg-type]
+            (self.sensors, bridge.array(self.layouts["sensors"], topics.sensors_values(view))),  # type: ignore[arg-type]
+        ]
+        if self.sensor_data is not None:
+            values = topics.sensor_data_values(view)  # type: ignore[arg-type]
+            sent.append((self.sensor_data, bridge.array(self.layouts["sensor_data"], values)))
+        for made, message in sent:
+            made.publish(message)
+        return sent
+
+
+class SeveralRobotsBridge:
+    """Publishes each robot of a simulator in its namespace and steps the world on their
+    commands; see the module's description."""
+
+    def __init__(self, ros: Any, simulator: Simulator, settings: Any, stop: threading.Event):
+        self.ros = ros
+        self.simulator = simulator
+        self.settings = settings
+        self.stop = stop
+        self.lockstep = settings.mode == "lockstep"
+        self.commands = 0
+        self.first_command_at: float | None = None
+        self.goal_step: int | None = None
+        self.goal = None
+        self._lock = threading.Lock()
+        self.unanswered = UnansweredState()
+        self.last_state: list[tuple[Any, Any]] = []
+        self.clock_publisher = self.make_publisher(topics.CLOCK_TOPIC, ros.Clock)
+        namespaces = robot_namespaces(simulator.robot_names)
+        self.robots = [
+            RobotChannel(self, RobotOf(simulator, index), namespace)
+            for index, namespace in enumerate(namespaces)
+        ]
+        self.publish_state()
+        self.unanswered.went_out(time.monotonic())
+
+    def make_publisher(self, topic: str, message_class: Any = None) -> Any:
+        """A latched publisher, synchronous in lockstep (every subscriber gets every step)."""
+        kind = message_class if message_class is not None else self.ros.Float64MultiArray
+        return publisher(self.ros, topic, kind, synchronous=self.lockstep, latch=True)
+
+    def layout(self, labels: list[str]) -> Any:
+        layout = self.ros.Float64MultiArray().layout
+        size = len(labels)
+        layout.dim = [self.ros.MultiArrayDimension(label=",".join(labels), size=size, stride=size)]
+        return layout
+
+    def array(self, layout: Any, values: list[float]) -> Any:
+        return self.ros.Float64MultiArray(layout=layout, data=values)
+
+    def publish_state(self) -> None:
+        """Publishes ``/clock``, then every robot's state, for the current step."""
+        nanoseconds = stamp_nanoseconds(self.simulator.time)
+        clock = self.ros.Clock(clock=self.ros.rospy.Time(nanoseconds // 10**9, nanoseconds % 10**9))
+        self.clock_publisher.publish(clock)
+        self.last_state = [(self.clock_publisher, clock)]
+        for robot in self.robots:
+            self.last_state += robot.publish(self)
+
+    def command(
+        self, robot: RobotChannel, topic: str, read: Callable[[], tuple[float, float]]
+    ) -> None:
+        """Takes one command of ``robot``; a bad one is logged and keeps its last wheel speeds
+        (:class:`~mazesim.ros.topics.HeldCommand`), still one command."""
+        with self._lock:
+            if self.stop.is_set():
+                return
+            command, refused = robot.held.take(read)
+            if refused:
+                self.ros.rospy.logwarn(
+                    "ignored a bad %s/%s message: %s; the robot keeps its wheel speeds for "
+                    "that step",
+                    robot.namespace,
+                    topic,
+                    refused,
+                )
+            if self.first_command_at is None:
+                self.first_command_at = time.monotonic()
+            self.commands += 1
+            if not self.lockstep:
+                robot.wheel_speeds = command
+                return
+            robot.pending.append(command)
+            self._step_pending()
+
+    def _step_pending(self) -> None:
+        """Lockstep: steps while every driven robot has a command waiting. Call with the lock."""
+        step_rounds(self.robots, self.stop, self._step)
+
+    def _step(self) -> None:
+        import numpy as np
+
+        speeds = np.array([robot.wheel_speeds for robot in self.robots], dtype=np.float64)
+        self.simulator.step_robots(speeds)
+        self.publish_state()
+        self.unanswered.went_out(time.monotonic())
+        duration = self.settings.duration
+        if duration > 0.0 and self.simulator.time >= duration - 1e-9:
+            self.stop.set()
+
+    def _resend_unanswered(self) -> None:
+        """Lockstep: the state again when none answered it (see the module's description)."""
+        with self._lock:
+            if self.stop.is_set() or not self.unanswered.waited_long(time.monotonic()):
+                return
+            waiting = [robot for robot in self.robots if robot.driven() and not robot.pending]
+            if not waiting:
+                return
+            notice = self.unanswered.resending(
+                self.simulator.steps > 0,
+                self.simulator.steps,
+                f"{waiting[0].namespace}/{topics.MOTOR_TOPIC}",
+                "answer each robot's state with one command",
+            )
+            if notice is not None:
+                self.ros.rospy.logwarn(notice)
+            for made, message in list(self.last_state):
+                made.publish(message)
+            self.unanswered.went_out(time.monotonic())
+
+    def finish(self) -> tuple[int, float]:
+        """Stops stepping; returns the steps and simulated time."""
+        with self._lock:
+            self.stop.set()
+            return self.simulator.steps, self.simulator.time
+
+    def run(self) -> None:
+        """Runs until a signal, ROS shutdown or the end of ``duration``."""
+        rospy = self.ros.rospy
+        if self.lockstep:
+            while not self.stop.wait(0.1) and not rospy.is_shutdown():
+                self._resend_unanswered()
+            return
+        period = self.simulator.control_step_ms / 1000.0 / self.settings.speed
+        next_step = time.monotonic()
+        while not self.stop.is_set() and not rospy.is_shutdown():
+            with self._lock:
+                self._step()
+            next_step += period
+            delay = next_step - time.monotonic()
+            if delay > 0.0:
+                self.stop.wait(delay)
+            else:
+                next_step = time.monotonic()

@@ -1,0 +1,159 @@
+"""The ROS 1 bridge on a world of several robots: each robot served in its own namespace (the
+ROS 2 bridge's names), one /clock, lockstep over every driven robot; driven by a real rospy node."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import mazesim
+from mazesim.actions import wheel_speeds
+from mazesim.errors import InvalidArgumentError
+from mazesim.ros import standard, topics
+from mazesim.ros.local_master import LocalMaster
+from mazesim.ros.robots import next_round, robot_namespaces
+from ros_support import needs_ros, spawn_bridge, topic_types
+
+DRIVER = Path(__file__).with_name("several_driver.py")
+
+THREE_ROBOTS = """
+format = "mazesim-world"
+version = 1
+name = "three-in-a-box"
+
+[[walls]]
+center = [0.0, 0.3]
+size = [1.0, 0.01]
+
+[[walls]]
+center = [0.0, -0.3]
+size = [1.0, 0.01]
+
+[[robots]]
+name = "west"
+x = -0.3
+y = 0.0
+
+[[robots]]
+name = "east-1"
+x = 0.3
+y = 0.0
+yaw = 3.141592653589793
+
+[[robots]]
+name = "north"
+x = 0.0
+y = 0.2
+yaw = 1.5707963267948966
+"""
+
+
+def _commands() -> list[list[list | None]]:
+    """Per step, one command per robot: west on motor, east-1 on action then cmd_vel, north
+    nobody drives."""
+    steps: list[list[list | None]] = []
+    for step in range(12):
+        east = ["action", "00" if step < 6 else "aa"] if step % 2 else ["cmd_vel", [0.05, 0.8]]
+        steps.append([["motor", [3.0 + 0.1 * step, 2.0]], east, None])
+    return steps
+
+
+def _in_process(world: mazesim.World, steps: list[list[list | None]]) -> list[list[list[float]]]:
+    simulator = mazesim.Simulator(world, seed=0)
+    robot = simulator.robot
+    poses: list[list[list[float]]] = [[] for _ in range(simulator.num_robots)]
+
+    def note() -> None:
+        for index in range(simulator.num_robots):
+            x, y, yaw = simulator.robot_state(index)["pose"]
+            poses[index].append([x, y, yaw, simulator.time])
+
+    note()
+    speeds = [(0.0, 0.0)] * simulator.num_robots
+    for entry in steps:
+        for index, command in enumerate(entry):
+            if command is None:
+                continue
+            topic, value = command
+            if topic == "motor":
+                speeds[index] = topics.motor_command(value)
+            elif topic == "action":
+                speeds[index] = wheel_speeds(value, robot.max_wheel_speed)
+            else:
+                speeds[index] = standard.twist_wheel_speeds(value[0], value[1], robot)
+        simulator.step_robots(np.array(speeds, dtype=np.float64))
+        note()
+    return poses
+
+
+def test_lockstep_waits_for_every_driven_robot_and_skips_the_undriven() -> None:
+    from collections import deque
+
+    west: deque[tuple[float, float]] = deque([(1.0, 1.0), (2.0, 2.0)])
+    east: deque[tuple[float, float]] = deque()
+    nobody: deque[tuple[float, float]] = deque()
+    # east is driven and has sent nothing: the world waits.
+    assert next_round([west, east, nobody], [True, True, False]) is None
+    east.append((3.0, 3.0))
+    assert next_round([west, east, nobody], [True, True, False]) == [(1.0, 1.0), (3.0, 3.0), None]
+    # west's second command waits for east's next.
+    assert next_round([west, east, nobody], [True, True, False]) is None
+    assert list(west) == [(2.0, 2.0)]
+    # Nothing waiting at all: no step, even with nobody driven.
+    assert next_round([deque(), deque()], [False, False]) is None
+
+
+def test_the_single_robot_settings_are_refused_on_several_robots() -> None:
+    from mazesim.ros.bridge import BridgeSettings
+    from mazesim.ros.several import refuse_single_robot_settings
+
+    refuse_single_robot_settings(BridgeSettings(), "three")  # defaults: accepted
+    for name, value in (("command_period", 0.1), ("stop_at_goal", True), ("bag", "a.bag")):
+        settings = BridgeSettings(**{name: value})  # type: ignore[arg-type]
+        with pytest.raises(InvalidArgumentError, match=f"expected parameter {name} left out"):
+            refuse_single_robot_settings(settings, "three")
+
+
+@needs_ros
+def test_every_robot_is_served_in_its_namespace_and_runs_as_in_process(
+    master: LocalMaster, tmp_path: Path
+) -> None:
+    world_file = tmp_path / "three.toml"
+    world_file.write_text(THREE_ROBOTS)
+    world = mazesim.load_world(str(world_file))
+    namespaces = robot_namespaces([str(robot["name"]) for robot in world.robots])
+    assert namespaces == ["/west", "/east_1", "/north"]  # the ROS 2 bridge's names
+    steps = _commands()
+    commands_file = tmp_path / "commands.json"
+    commands_file.write_text(json.dumps(steps))
+    bridge = spawn_bridge(master, "--world", str(world_file))
+    driver = subprocess.run(
+        [sys.executable, str(DRIVER), json.dumps(namespaces), str(commands_file)],
+        env=master.env,
+        capture_output=True,
+        text=True,
+        timeout=300,
+        check=False,
+    )
+    assert driver.returncode == 0, driver.stdout + driver.stderr
+    served = json.loads(driver.stdout.strip().splitlines()[-1])
+    kinds = topic_types(master)
+    bridge.terminate()
+    bridge.wait(timeout=60)
+    for namespace in namespaces:
+        assert kinds[f"{namespace}/sensors"] == "std_msgs/Float64MultiArray"
+        assert kinds[f"{namespace}/cmd_vel"] == "geometry_msgs/Twist"
+        assert kinds[f"{namespace}/motor"] == "std_msgs/Float64MultiArray"
+        assert kinds[f"{namespace}/action"] == "std_msgs/String"
+    assert kinds["/clock"] == "rosgraph_msgs/Clock"
+    assert "/sensors" not in kinds and "/cmd_vel" not in kinds  # nothing outside a namespace
+    expected = _in_process(world, steps)
+    assert served == expected  # bit for bit, every robot, every step
+    # The undriven robot stood still while the others moved.
+    assert served[2][0][:3] == served[2][-1][:3]
+    assert served[0][-1][:2] != served[0][0][:2] and served[1][-1][:2] != served[1][0][:2]
