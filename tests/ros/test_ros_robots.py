@@ -157,3 +157,32 @@ def test_every_robot_is_served_in_its_namespace_and_runs_as_in_process(
     # The undriven robot stood still while the others moved.
     assert served[2][0][:3] == served[2][-1][:3]
     assert served[0][-1][:2] != served[0][0][:2] and served[1][-1][:2] != served[1][0][:2]
+
+
+@needs_ros
+def test_realtime_steps_every_robot_with_its_last_command(
+    master: LocalMaster, tmp_path: Path
+) -> None:
+    """In realtime mode the world steps on its own: the robot commanded once drives on with
+    that command, the robot nobody drives stands, and ``/clock`` runs for both."""
+    world_file = tmp_path / "three.toml"
+    world_file.write_text(THREE_ROBOTS)
+    namespaces = ["/west", "/east_1", "/north"]
+    commands_file = tmp_path / "commands.json"
+    commands_file.write_text(json.dumps([[["motor", [4.0, 4.0]], None, None]] * 10))
+    bridge = spawn_bridge(master, "--world", str(world_file), "--mode", "realtime")
+    driver = subprocess.run(
+        [sys.executable, str(DRIVER), json.dumps(namespaces), str(commands_file)],
+        env=master.env,
+        capture_output=True,
+        text=True,
+        timeout=300,
+        check=False,
+    )
+    bridge.terminate()
+    bridge.wait(timeout=60)
+    assert driver.returncode == 0, driver.stdout + driver.stderr
+    west, _, north = json.loads(driver.stdout.strip().splitlines()[-1])
+    assert west[-1][3] > west[0][3] and north[-1][3] > north[0][3]  # simulated time ran
+    assert west[-1][0] > west[0][0]  # driven along +x
+    assert north[-1][:3] == north[0][:3]  # never commanded: stands
