@@ -94,8 +94,11 @@ PAGE_CONSTANTS: dict[str, dict[str, str]] = {
         "0.5 s": "the simulated sleep of the test of a controller that sleeps before commanding",
         "0.8 s": "the eighth tick of a 0.1 s rospy.Rate, where --command-period's hold is 4 steps",
         "2 s": "the lockstep bridge's wait before it holds a command on over a tick let go",
+        "600 s": "the bridges' default idle timeout (mazesim.ros.lockstep.IDLE_TIMEOUT_S)",
+        "3 s": "how long the idle test's node holds cmd_vel open, sending nothing",
     },
     "ros2.md": {
+        "600 s": "the bridges' default idle timeout (mazesim.ros.lockstep.IDLE_TIMEOUT_S)",
         "0.3 %": "the noise column of the E-puck PROTO's gyro and accelerometer tables",
         "0.5 s": "the bridge's wait for its readers to match",
         "5 s": "the lockstep bridge's wait before it sends the reset state again",

@@ -1,5 +1,6 @@
 """The lockstep rules both ROS bridges share (``mazesim.ros.lockstep``), without ROS: when a state
-that went unanswered goes out again, and how long a command holds for a node on a timer."""
+that went unanswered goes out again, how long a command holds for a node on a timer, and when a
+bridge nobody drives gives up."""
 
 from __future__ import annotations
 
@@ -12,6 +13,7 @@ from mazesim.ros.lockstep import (
     RESEND_S,
     SKIPPED_TICK_S,
     CommandDeadline,
+    IdleTimeout,
     TimerHold,
     UnansweredState,
 )
@@ -182,3 +184,29 @@ def test_without_a_period_no_tick_is_ever_let_go() -> None:
     hold.start(1)
     hold.ended(1.0)
     assert not hold.let_go(1e9) and hold.wait(1.0) == math.inf
+
+
+def test_a_bridge_nobody_drives_gives_up_after_its_idle_timeout() -> None:
+    idle = IdleTimeout(2.0, now=100.0)
+    assert not idle.watch(101.9, driven=False) and idle.wait(101.0) == pytest.approx(1.0)
+    assert idle.watch(102.0, driven=False) and idle.expired
+    assert "for 2 s; giving up (--idle-timeout sets" in idle.message("--idle-timeout")
+
+
+def test_a_node_connected_keeps_the_bridge_and_the_timeout_counts_from_when_it_left() -> None:
+    idle = IdleTimeout(2.0, now=0.0)
+    for now in (1.0, 5.0, 50.0):  # a teleop connected, sending nothing
+        assert not idle.watch(now, driven=True)
+    assert not idle.watch(51.9, driven=False)  # it left at 50 s
+    assert idle.watch(52.0, driven=False)
+
+
+def test_an_idle_timeout_of_zero_never_gives_up() -> None:
+    idle = IdleTimeout(0.0, now=0.0)
+    assert not idle.watch(1e9, driven=False) and idle.wait(1e9) == math.inf
+
+
+@pytest.mark.parametrize("seconds", [-1.0, math.nan, math.inf])
+def test_an_idle_timeout_that_is_no_time_is_refused(seconds: float) -> None:
+    with pytest.raises(InvalidArgumentError, match="expected an idle timeout in seconds >= 0"):
+        IdleTimeout(seconds, now=0.0)

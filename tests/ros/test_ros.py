@@ -864,10 +864,18 @@ def test_a_controller_on_a_rospy_timer_drives_in_lockstep_with_command_period(
     held = [command for command, steps in zip(commands, holds) for _ in range(steps)]
     expected = replay("e-puck", 6, held)
     poses, sensors = seen["data"]["pose"], seen["data"]["sensors"]
-    again = len(poses) - len(expected["pose"])  # the reset state sent again
-    assert again >= 1
+    # The reset state as often as the probe received it: a probe whose subscriptions connected
+    # only after the state was sent again (a loaded machine) has it once, from the hand-over to
+    # late subscriptions, so how many copies it holds says nothing of the bridge.
+    again = len(poses) - len(expected["pose"])
+    assert again >= 0
     assert poses == expected["pose"][:1] * again + expected["pose"]  # bit for bit
     assert sensors == expected["sensors"][:1] * again + expected["sensors"]
+    # What the timer needs, whatever the load: the reset state went out again unanswered, then
+    # /clock ran on its own to the timer's first tick (4 steps) and waited there.
+    log = Path(master.log_path("bridge")).read_text()
+    assert "publishing the reset state again" in log
+    assert "/clock now runs on its own" in log
     assert seen["clock"][-1] == pytest.approx((4 + sum(holds)) * 0.032)
 
 

@@ -34,6 +34,7 @@ from mazesim.cli._ros_commands import (
 from mazesim.errors import _shown
 from mazesim.replay.views import add_viewing_options
 from mazesim.ros._ros import check_ros_installed
+from mazesim.ros.lockstep import IDLE_TIMEOUT_S
 
 __all__ = ["check_before_parsing"]
 
@@ -113,6 +114,7 @@ def _run_bridge(args: argparse.Namespace) -> int:
         "command_period": args.command_period,
         "command_deadline": args.command_deadline,
         "bag": args.bag,
+        "idle_timeout": args.idle_timeout,
     }
     return run_bridge(options, args.remappings, args.name)
 
@@ -231,6 +233,15 @@ COMMANDS = (
                 "controller that waits for simulated time the bridge cannot foresee (a "
                 "rospy.Timer or rospy.sleep counted from a later time) (default: 0, wait for "
                 "each command)",
+            ),
+            option(
+                "--idle-timeout",
+                type=non_negative_seconds,
+                metavar="S",
+                help="give up (exit status 3) once no command has come and no node has had a "
+                "command topic open for S wall-clock seconds, so a bridge whose controller "
+                f"never connected, or ended, does not run for ever (default: ~idle_timeout or "
+                f"{IDLE_TIMEOUT_S:g}; 0: never)",
             ),
             option(
                 "--bag",

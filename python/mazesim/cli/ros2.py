@@ -23,6 +23,7 @@ from mazesim.cli._ros_commands import (
 )
 from mazesim.episodes import MAX_STEPS
 from mazesim.errors import InvalidArgumentError, _shown
+from mazesim.ros.lockstep import IDLE_TIMEOUT_S
 from mazesim.ros2._deps import require_ros2
 
 __all__ = ["check_before_parsing", "take_ros_arguments"]
@@ -108,6 +109,10 @@ def _command_deadline(text: str) -> float:
     return _non_negative(text, "a deadline in wall-clock seconds (0: wait for each command)")
 
 
+def _idle_timeout(text: str) -> float:
+    return _non_negative(text, "seconds of wall-clock time (0: never give up)")
+
+
 def _period_ms(text: str) -> float:
     return _non_negative(text, "a timer period in ms (0: answer each reading)")
 
@@ -167,6 +172,7 @@ def _run_bridge(args: argparse.Namespace) -> int:
             namespace=_bridge_namespace(args),
             command_period=args.command_period,
             command_deadline=args.command_deadline,
+            idle_timeout=args.idle_timeout,
             ros_arguments=args.ros_arguments,
         )
     )
@@ -303,6 +309,14 @@ COMMANDS = (
                 "for a node that waits for simulated time the bridge cannot foresee (a timer "
                 "counted from its first /clock, a sleep after each command) (default: 0, wait "
                 "for each command)",
+            ),
+            option(
+                "--idle-timeout",
+                type=_idle_timeout,
+                default=IDLE_TIMEOUT_S,
+                help="give up (exit status 3) once no node has had a command topic open for "
+                "this many wall-clock seconds, so a bridge whose node never came, or ended, does "
+                "not run for ever (default: %(default)g; 0: never)",
             ),
             *_COMMON,
         ),

@@ -77,8 +77,11 @@ from mazesim.ros.bag import BagWriter
 from mazesim.ros.latched import LateConnections
 from mazesim.ros.lockstep import (
     IDLE_CLOCK_AFTER_S,
+    IDLE_EXIT_STATUS,
+    IDLE_TIMEOUT_S,
     RESEND_S,
     CommandDeadline,
+    IdleTimeout,
     TimerHold,
     UnansweredState,
     stamp_nanoseconds,
@@ -89,6 +92,7 @@ from mazesim.ros.standard import StandardPublishers
 
 __all__ = [
     "IDLE_CLOCK_AFTER_S",
+    "IDLE_EXIT_STATUS",
     "MODES",
     "RESEND_S",
     "Bridge",
@@ -133,6 +137,9 @@ class BridgeSettings:
     #: A bag the bridge writes every message it sends and every command it takes into (see
     #: :mod:`mazesim.ros.bag`; empty: none).
     bag: str = ""
+    #: Wall-clock seconds with no command and no publisher of a command topic connected before
+    #: the bridge gives up (0: never; see :class:`mazesim.ros.lockstep.IdleTimeout`).
+    idle_timeout: float = IDLE_TIMEOUT_S
 
     def validate(self) -> None:
         """Raises InvalidArgumentError naming the first parameter that is out of range."""
@@ -169,6 +176,11 @@ class BridgeSettings:
         if not 0 <= self.seed < 2**64:
             raise InvalidArgumentError(
                 f"expected parameter seed in [0, 2^64); found {_shown(self.seed)}"
+            )
+        if not (math.isfinite(self.idle_timeout) and self.idle_timeout >= 0.0):
+            raise InvalidArgumentError(
+                "expected parameter idle_timeout to be seconds >= 0 (0: never give up); "
+                f"found {_shown(self.idle_timeout)}"
             )
 
 
@@ -227,6 +239,9 @@ class Bridge:
         #: stamp after them is that many steps later than the simulator's time.
         self.idle_steps = 0
         self.idle_tick_at = math.inf
+        #: Lockstep: :attr:`idle_steps` when ``/clock`` started running on its own (``None``:
+        #: it is not running).
+        self._idle_since: int | None = None
         self.goal = simulator.world.goal
         #: The control step after which the robot was first inside the goal disc, if it was.
         self.goal_step: int | None = None
@@ -250,6 +265,8 @@ class Bridge:
         self._goal_since: tuple[float, int] | None = None
         self._goals_answered = 0
         self.bag = BagWriter(ros, settings.bag) if settings.bag else None
+        #: When a bridge nobody drives gives up (``idle_timeout``).
+        self.idle = IdleTimeout(settings.idle_timeout, time.monotonic())
         #: Lockstep: the state topics' subscriptions that connected and have not had the state.
         self.late = LateConnections()
         self._sending_again = False
@@ -317,10 +334,13 @@ class Bridge:
         )
         return _Remembered(made, self._sent)
 
-    def _sent(self, sent: tuple[Any, Any]) -> None:
-        """Notes a message that went out (publisher, message): in the last state and the bag."""
+    def _sent(self, sent: tuple[Any, Any], on_the_wire: bool = True) -> None:
+        """Notes a message that went out (publisher, message): in the last state and the bag.
+        ``on_the_wire``: sent to the subscriptions (not kept back, as ``/tf`` at a stamp it
+        went out with)."""
         self.last_state.append(sent)
-        self.late.published(sent[0].resolved_name)
+        if on_the_wire:
+            self.late.published(sent[0].resolved_name)
         if self.bag is not None and not self._sending_again:
             self.bag.write(sent[0].resolved_name, sent[1])
 
@@ -363,50 +383,68 @@ class Bridge:
         return stamp_nanoseconds(self.simulator.time + self.idle_steps * control_step_s)
 
     def tick_idle_clock(self) -> float:
-        """Lockstep, before the first command: once the reset state sent again has gone
-        unanswered for ``IDLE_CLOCK_AFTER_S``, ``/clock`` runs on its own in real time, one
-        control step at a time, the robot standing still and nothing else published, so that a
-        controller that waits for simulated time before its first command (``rospy.sleep`` or
+        """Lockstep: once a state sent again has gone unanswered for ``IDLE_CLOCK_AFTER_S``,
+        ``/clock`` runs on its own in real time, one control step at a time, nothing else
+        published, until a command comes. Before the first command the robot stands still: a
+        controller that waits for simulated time before it starts (``rospy.sleep`` or
         ``rospy.Rate`` with ``/use_sim_time``, as ``teleop_twist_keyboard`` does while it looks
-        for a subscriber) can start. The simulator does not step: the run stays the in-process
-        run with the same commands, step for step and reading for reading, its stamps later by
-        the steps the clock ran (:attr:`idle_steps`, logged at the first command and at the
-        end). Returns the seconds until the next tick (``inf``: none due)."""
+        for a subscriber) can start. Once stepping, a controller that waits for simulated time
+        inside a callback (tf2's ``lookup_transform`` with a timeout, whose wait sleeps on a
+        ``rospy.Rate`` of simulated time, when the state's ``/tf`` came after its ``scan``) gets
+        it. The simulator does not step meanwhile: the run stays the in-process run with the same
+        commands, step for step and reading for reading, its stamps later by the steps the clock
+        ran (:attr:`idle_steps`, logged at the command and at the end). Returns the seconds until
+        the next tick (``inf``: none due)."""
         with self._lock:
-            if self.commands or self.stop.is_set():
-                if self.commands and self.idle_tick_at != math.inf:
-                    self.idle_tick_at = math.inf
-                    if self.idle_steps:
-                        self.ros.rospy.logwarn(
-                            "lockstep: the first command came after /clock ran %d steps on its "
-                            "own; from here every stamp is that many steps later than the "
-                            "in-process run's, whose steps and readings this run keeps",
-                            self.idle_steps,
-                        )
+            if self.stop.is_set():
                 return math.inf
             now = time.monotonic()
             if now < self.idle_tick_at:
                 return self.idle_tick_at - now
-            if self.idle_steps == 0:
-                self.ros.rospy.logwarn(
-                    "lockstep: the reset state sent again went unanswered; /clock now runs on "
-                    "its own in real time, the robot standing still, until the first command (a "
-                    "controller that waits for simulated time before its first command can "
-                    "start; one that commands at a rospy.Rate slower than the control step: "
-                    "run the bridge with --command-period, the rate's period)"
-                )
-            if self.idle_steps == 0:
-                self.hold.start(self._stamp())  # the first tick of a timer on command_period
+            if self._idle_since is None:
+                self._idle_since = self.idle_steps
+                if self.commands:
+                    self.ros.rospy.logwarn(
+                        "lockstep: step %d's state, sent again, went unanswered; /clock now runs "
+                        "on its own in real time, the simulation waiting, until a command comes "
+                        "(a controller that waits for simulated time inside a callback, as "
+                        "tf2's lookup_transform with a timeout does, can go on)",
+                        self.simulator.steps,
+                    )
+                else:
+                    self.ros.rospy.logwarn(
+                        "lockstep: the reset state sent again went unanswered; /clock now runs "
+                        "on its own in real time, the robot standing still, until the first "
+                        "command (a controller that waits for simulated time before its first "
+                        "command can start; one that commands at a rospy.Rate slower than the "
+                        "control step: run the bridge with --command-period, the rate's period)"
+                    )
+                    self.hold.start(self._stamp())  # the first tick of a timer on command_period
             self.idle_steps += 1
             self.clock_publisher.publish(self.ros.Clock(clock=self._clock_time()))
             self.idle_tick_at += self.simulator.control_step_ms / 1000.0
-            if self.hold.active and not self.hold.holds(self._stamp()):
+            if not self.commands and self.hold.active and not self.hold.holds(self._stamp()):
                 # At the controller's tick: its timer fires now (rospy.Timer made in its
                 # constructor); the clock waits there for its command before it goes on, so
                 # the command comes at this stamp whatever the load, and the run is the same.
                 self.idle_tick_at += IDLE_CLOCK_AFTER_S
                 self.hold.start(self._stamp())
             return max(self.idle_tick_at - time.monotonic(), 0.0)
+
+    def _stop_idle_clock(self) -> None:
+        """A command came: ``/clock`` stops running on its own; says how far it ran, if it did.
+        Call with the lock held."""
+        self.idle_tick_at = math.inf
+        if self._idle_since is None:
+            return
+        ran, self._idle_since = self.idle_steps - self._idle_since, None
+        self.ros.rospy.logwarn(
+            "lockstep: the command came after /clock ran %d steps on its own; from here every "
+            "stamp is %d steps later than the in-process run's, whose steps and readings this "
+            "run keeps",
+            ran,
+            self.idle_steps,
+        )
 
     def _finished(self) -> bool:
         """Notes the goal after a step; whether the bridge is done (duration, or goal reached)."""
@@ -437,6 +475,7 @@ class Bridge:
             self.resets.apply(kind)
             if kind == RESET_SIMULATION:
                 self.idle_steps = 0
+            self.idle_tick_at, self._idle_since = math.inf, None
             self.wheel_speeds = self.held.latest = (0.0, 0.0)
             self.hold.start(self._stamp())  # no tick waits for a command across a reset
             self.standard.previous = None
@@ -495,15 +534,7 @@ class Bridge:
                     GOAL_GRACE_S,
                     self.simulator.steps,
                 )
-            if self.commands:
-                for made, message in list(self.last_state):
-                    made.publish(message)
-            else:
-                self._sending_again = True  # the bag holds each state once
-                try:
-                    self.publish_state()
-                finally:
-                    self._sending_again = False
+            self._send_state_again()
             self.unanswered.went_out(time.monotonic())
 
     def on_cmd_vel(self, message: Any) -> None:
@@ -541,6 +572,7 @@ class Bridge:
                 self.bag.write(*taken)
             if self.first_command_at is None:
                 self.first_command_at = time.monotonic()
+            self._stop_idle_clock()
             self.commands += 1
             self.wheel_speeds = (left, right)
             if not self.lockstep:
@@ -629,18 +661,45 @@ class Bridge:
             )
             if notice is not None:
                 self.ros.rospy.logwarn(notice)
-            if stepped:
-                for made, message in list(self.last_state):
-                    made.publish(message)
-                    self.late.published(made.resolved_name)
-                return
+            self._send_state_again()
+            if self.idle_tick_at == math.inf:
+                self.idle_tick_at = time.monotonic() + IDLE_CLOCK_AFTER_S
+
+    def _send_state_again(self) -> None:
+        """Sends the state again (a state unanswered, a goal come): before the first command the
+        reset state, stamped anew if ``/clock`` ran on its own meanwhile; once stepping, the last
+        state as it went out. Never ``/tf`` at a stamp it already went out with: tf2 keeps
+        transforms by stamp and warns of the same ones again (``TF_REPEATED_DATA``); a
+        subscription that connected since gets them from :class:`LateConnections`. Never a
+        ``/clock`` older than the one the clock ran on to. Call with the lock held."""
+        if not self.commands:
             self._sending_again = True  # the bag holds each state once
             try:
                 self.publish_state()
             finally:
                 self._sending_again = False
-            if self.idle_tick_at == math.inf:
-                self.idle_tick_at = time.monotonic() + IDLE_CLOCK_AFTER_S
+            return
+        for made, message in list(self.last_state):
+            if made.resolved_name == standard.TF_TOPIC:
+                continue
+            if made is self.clock_publisher.made and self._idle_since is not None:
+                continue
+            made.publish(message)
+            self.late.published(made.resolved_name)
+
+    def give_up_when_idle(self) -> bool:
+        """Stops the bridge once no command has come and no publisher of a command topic has
+        been connected for ``idle_timeout`` seconds (:class:`~mazesim.ros.lockstep.IdleTimeout`),
+        saying so; returns whether it did."""
+        with self._lock:
+            connected = any(sub.get_num_connections() > 0 for sub in self.command_subscribers)
+            if not self.idle.look(time.monotonic(), self.commands, connected):
+                return False
+            self.stop.set()
+        self.ros.rospy.logerr(
+            "mazesim bridge: %s", self.idle.message("--idle-timeout, or ~idle_timeout,")
+        )
+        return True
 
     def finish(self) -> tuple[int, float]:
         """Stops stepping (later commands are ignored), finishes the bag if there is one and
@@ -672,6 +731,8 @@ class Bridge:
                 with self._lock:
                     state = [(made.resolved_name, sent) for made, sent in self.last_state]
                     self.late.hand_over(state, self.sensing)
+                if self.give_up_when_idle():
+                    return
                 self._resend_unanswered()
                 self.answer_goal()
                 wait = min(
@@ -681,6 +742,8 @@ class Bridge:
         period = self.simulator.control_step_ms / 1000.0 / self.settings.speed
         next_step = time.monotonic()
         while not self.stop.is_set() and not rospy.is_shutdown():
+            if self.give_up_when_idle():
+                return
             with self._lock:
                 self.simulator.step(*self.wheel_speeds)
                 self.publish_state()
@@ -698,11 +761,21 @@ class _Remembered:
     """A publisher that hands each message it publishes to ``note`` (the bridge keeps the last
     state as it went out, to send it again); everything else is the publisher's."""
 
-    def __init__(self, made: Any, note: Callable[[tuple[Any, Any]], None]) -> None:
+    def __init__(self, made: Any, note: Callable[..., None]) -> None:
         self.made = made
         self._note = note
+        #: ``/tf``: the stamp its transforms last went out with.
+        self._tf_stamp: Any = None
 
     def publish(self, message: Any) -> None:
+        if self.made.resolved_name == standard.TF_TOPIC:
+            # tf2 keeps transforms by stamp and warns of the same ones again (TF_REPEATED_DATA):
+            # the reset state sent again keeps them in the last state, off the wire.
+            stamp = message.transforms[0].header.stamp
+            if stamp == self._tf_stamp:
+                self._note((self.made, message), on_the_wire=False)
+                return
+            self._tf_stamp = stamp
         self.made.publish(message)
         self._note((self.made, message))
 
@@ -739,7 +812,8 @@ def run_bridge(
         node_name: The node's name unless a ``__name:=`` remapping overrides it.
 
     Returns:
-        The exit code, 0 once the bridge has stopped.
+        The exit code, 0 once the bridge has stopped, ``IDLE_EXIT_STATUS`` when it gave up with
+        no node driving it (``idle_timeout``).
     """
     ros, stop = start_node("mazesim-ros-bridge", node_name, remappings, time_source=True)
     rospy = ros.rospy
@@ -796,7 +870,7 @@ def run_bridge(
         rospy.loginfo(
             "mazesim bridge stopped: %d steps (%.2f s simulated) in %.2f s of stepping, "
             "%.0f steps/s; %s; %d bad messages ignored (their steps kept the wheel speeds); "
-            "/clock ran %d steps on its own before the first command; %d steps without a "
+            "/clock ran %d steps on its own while no command came; %d steps without a "
             "command (command_deadline); %d ticks let go without a command (command_period)",
             steps,
             simulated,
@@ -809,7 +883,7 @@ def run_bridge(
             bridge.hold.skipped,
         )
         rospy.signal_shutdown("mazesim bridge stopped")
-    return 0
+    return IDLE_EXIT_STATUS if bridge.idle.expired else 0
 
 
 def _run_several(ros: Any, bridge: SeveralRobotsBridge) -> int:
@@ -838,4 +912,4 @@ def _run_several(ros: Any, bridge: SeveralRobotsBridge) -> int:
             sum(robot.held.refused for robot in bridge.robots),
         )
         rospy.signal_shutdown("mazesim bridge stopped")
-    return 0
+    return IDLE_EXIT_STATUS if bridge.idle.expired else 0

@@ -45,6 +45,12 @@ after a state, the bridge steps with the last command held, then on in real time
 step per control step of wall-clock time, until a command comes. A node that answers each state
 within the deadline runs the in-process run step for step; a node that waits for time gets it.
 How many steps a command holds then depends on when it came, which the stamps record.
+
+A bridge whose node never connects, or that a node left (a test or launch that ended and left its
+bridge behind), waited for ever. :class:`IdleTimeout` says when it gives up: once no command has
+come and no command writer has been connected for ``--idle-timeout`` seconds of wall-clock time
+(``IDLE_TIMEOUT_S`` by default; 0: never), in either mode. A node that is connected, even one
+that sends nothing for a long time (a teleop whose user looks away), keeps it running.
 """
 
 from __future__ import annotations
@@ -56,6 +62,9 @@ from mazesim.errors import InvalidArgumentError
 __all__ = [
     "CommandDeadline",
     "IDLE_CLOCK_AFTER_S",
+    "IDLE_EXIT_STATUS",
+    "IDLE_TIMEOUT_S",
+    "IdleTimeout",
     "RESEND_S",
     "SKIPPED_TICK_S",
     "TimerHold",
@@ -66,7 +75,7 @@ __all__ = [
 #: Lockstep: seconds after a state went out, a command writer connected and no command come,
 #: before the bridge sends the state again.
 RESEND_S = 5.0
-#: Lockstep, before the first command: seconds after the reset state went out again unanswered
+#: Lockstep: seconds after a state (the reset state, or a later one) went out again unanswered
 #: before ``/clock`` runs on its own.
 IDLE_CLOCK_AFTER_S = 1.0
 #: Lockstep with a command period: wall-clock seconds after a hold ended at the node's tick with
@@ -74,6 +83,11 @@ IDLE_CLOCK_AFTER_S = 1.0
 #: (twice the wait before /clock runs on its own: a node slowed down by a loaded machine answers
 #: within it).
 SKIPPED_TICK_S = 2.0
+#: Wall-clock seconds with no command and no command writer connected before a bridge gives up
+#: (``--idle-timeout``; 0: never).
+IDLE_TIMEOUT_S = 600.0
+#: The exit status of a bridge that gave up with no node driving it.
+IDLE_EXIT_STATUS = 3
 
 
 def stamp_nanoseconds(seconds: float) -> int:
@@ -289,4 +303,47 @@ class CommandDeadline:
             "command held, in real time, until one comes (--command-deadline: a node that "
             "waits for simulated time gets it; one that answers each state within the "
             "deadline runs step for step)"
+        )
+
+
+class IdleTimeout:
+    """When a bridge nobody drives gives up: once ``seconds`` of wall-clock time have passed with
+    no command come and no command writer connected (0: never)."""
+
+    def __init__(self, seconds: float, now: float) -> None:
+        if not (math.isfinite(seconds) and seconds >= 0.0):
+            raise InvalidArgumentError(
+                f"expected an idle timeout in seconds >= 0 (0: never give up); found {seconds}"
+            )
+        self.seconds = seconds
+        self._since = now
+        self._commands_seen = 0
+        #: Whether the bridge gave up.
+        self.expired = False
+
+    def watch(self, now: float, driven: bool) -> bool:
+        """Notes a look at the bridge (``driven``: a command writer is connected, or a command
+        came since the last look); returns whether the bridge gives up now."""
+        if driven or not self.seconds:
+            self._since = now
+            return False
+        self.expired = self.expired or now - self._since >= self.seconds
+        return self.expired
+
+    def look(self, now: float, commands: int, connected: bool) -> bool:
+        """:meth:`watch` for a bridge that counts the ``commands`` it has had so far
+        (``connected``: a command writer is connected now)."""
+        driven = connected or commands != self._commands_seen
+        self._commands_seen = commands
+        return self.watch(now, driven)
+
+    def wait(self, now: float) -> float:
+        """Seconds until the bridge would give up if nothing changes (``math.inf``: never)."""
+        return max(self._since + self.seconds - now, 0.0) if self.seconds else math.inf
+
+    def message(self, option: str) -> str:
+        """What the bridge says as it gives up; ``option``: how its timeout is set."""
+        return (
+            f"no command came and no node had a command topic open for {self.seconds:g} s; "
+            f"giving up ({option} sets how long to wait, 0 for ever)"
         )

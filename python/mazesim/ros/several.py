@@ -36,7 +36,7 @@ from mazesim.actions import wheel_speeds
 from mazesim.errors import InvalidArgumentError, _shown
 from mazesim.ros import standard, topics
 from mazesim.ros._ros import publisher
-from mazesim.ros.lockstep import UnansweredState, stamp_nanoseconds
+from mazesim.ros.lockstep import IdleTimeout, UnansweredState, stamp_nanoseconds
 from mazesim.ros.robots import RobotOf, robot_namespaces, step_rounds
 
 __all__ = ["RobotChannel", "SeveralRobotsBridge", "refuse_single_robot_settings"]
@@ -159,6 +159,8 @@ class SeveralRobotsBridge:
         self.goal = None
         self._lock = threading.Lock()
         self.unanswered = UnansweredState()
+        #: When a bridge nobody drives gives up (``idle_timeout``).
+        self.idle = IdleTimeout(settings.idle_timeout, time.monotonic())
         self.last_state: list[tuple[Any, Any]] = []
         self.clock_publisher = self.make_publisher(topics.CLOCK_TOPIC, ros.Clock)
         namespaces = robot_namespaces(simulator.robot_names)
@@ -259,16 +261,34 @@ class SeveralRobotsBridge:
             self.stop.set()
             return self.simulator.steps, self.simulator.time
 
+    def give_up_when_idle(self) -> bool:
+        """Stops the bridge once no robot has had a command and no publisher of a command topic
+        has been connected for ``idle_timeout`` seconds (:class:`~mazesim.ros.lockstep.IdleTimeout`,
+        the one-robot bridge's rule), saying so; returns whether it did."""
+        with self._lock:
+            connected = any(robot.driven() for robot in self.robots)
+            if not self.idle.look(time.monotonic(), self.commands, connected):
+                return False
+            self.stop.set()
+        self.ros.rospy.logerr(
+            "mazesim bridge: %s", self.idle.message("--idle-timeout, or ~idle_timeout,")
+        )
+        return True
+
     def run(self) -> None:
-        """Runs until a signal, ROS shutdown or the end of ``duration``."""
+        """Runs until a signal, ROS shutdown, the end of ``duration`` or ``idle_timeout``."""
         rospy = self.ros.rospy
         if self.lockstep:
             while not self.stop.wait(0.1) and not rospy.is_shutdown():
+                if self.give_up_when_idle():
+                    return
                 self._resend_unanswered()
             return
         period = self.simulator.control_step_ms / 1000.0 / self.settings.speed
         next_step = time.monotonic()
         while not self.stop.is_set() and not rospy.is_shutdown():
+            if self.give_up_when_idle():
+                return
             with self._lock:
                 self._step()
             next_step += period

@@ -52,8 +52,11 @@ from mazesim.errors import InvalidActionError, InvalidArgumentError, _known_name
 from mazesim.ros import standard, topics
 from mazesim.ros.lockstep import (
     IDLE_CLOCK_AFTER_S,
+    IDLE_EXIT_STATUS,
+    IDLE_TIMEOUT_S,
     RESEND_S,
     CommandDeadline,
+    IdleTimeout,
     TimerHold,
     UnansweredState,
 )
@@ -131,6 +134,9 @@ class BridgeSettings:
     #: the last command held, then on in real time until one comes (0: none, it waits; see
     #: :class:`mazesim.ros.lockstep.CommandDeadline`).
     command_deadline: float = 0.0
+    #: Wall-clock seconds with no command and no command writer matched before the bridge
+    #: gives up (0: never; see :class:`mazesim.ros.lockstep.IdleTimeout`).
+    idle_timeout: float = IDLE_TIMEOUT_S
     #: The ``--ros-args`` of the command line (a launch file's): the node's name, namespace
     #: and remappings.
     ros_arguments: RosArguments = RosArguments()
@@ -153,6 +159,11 @@ class BridgeSettings:
             raise InvalidArgumentError(
                 "expected --command-deadline with --mode lockstep (free-running, time moves "
                 f"whether or not a command comes); found --mode {self.mode}"
+            )
+        if not (math.isfinite(self.idle_timeout) and self.idle_timeout >= 0.0):
+            raise InvalidArgumentError(
+                "expected --idle-timeout to be seconds >= 0 (0: never give up); found "
+                f"{_shown(self.idle_timeout)}"
             )
         if self.namespace and not _ROS_NAMESPACE.fullmatch(self.namespace):
             raise InvalidArgumentError(
@@ -405,6 +416,8 @@ class Ros2Bridge:
         #: Lockstep: control steps ``/clock`` ran on its own before the first command; every
         #: stamp after them is that many steps later than the simulator's time.
         self.idle_steps = 0
+        #: When a bridge nobody drives gives up (``idle_timeout``).
+        self.idle = IdleTimeout(settings.idle_timeout, time.monotonic())
         self._idle_tick_at = math.inf
         self._waitset = self._make_waitset()
 
@@ -636,7 +649,7 @@ class Ros2Bridge:
         node that waits for one state before it creates its command writer, as
         ``rclpy.wait_for_message`` at start-up does, gets the reset state), then the grace
         period."""
-        while not self.stop.is_set():
+        while not self._given_up_when_idle():
             self._check_readers()
             self.parameters.serve()
             if any(robot.driven() or robot.watched() for robot in self.robots):
@@ -678,8 +691,19 @@ class Ros2Bridge:
                 self._greet_newcomers()
                 self._resend_unanswered()
                 self._tick_idle_clock()
+                self._given_up_when_idle()
             return
         self._run_free()
+
+    def _given_up_when_idle(self) -> bool:
+        """Stops the bridge once no command writer has been matched for ``idle_timeout``
+        seconds (no command can come without one; :class:`~mazesim.ros.lockstep.IdleTimeout`),
+        saying so; returns whether the bridge is stopped."""
+        driven = any(robot.driven() for robot in self.robots)
+        if not self.stop.is_set() and self.idle.watch(time.monotonic(), driven):
+            self._say(self.idle.message("--idle-timeout"))
+            self.stop.set()
+        return self.stop.is_set()
 
     def _resend_unanswered(self) -> None:
         """Lockstep: when no command has come ``RESEND_S`` after a state went out while a
@@ -829,7 +853,7 @@ class Ros2Bridge:
         control_step_s = self.simulator.control_step_ms / 1000.0
         pace = FreeRunning(self.settings.speed, control_step_s, self.settings.paused)
         self.publish_state(0.0)
-        while not self.stop.is_set():
+        while not self._given_up_when_idle():
             assert self.control is not None
             for data in self.control.take():
                 try:
@@ -866,7 +890,8 @@ def run_bridge(settings: BridgeSettings) -> int:
     """Runs the bridge from the command line until SIGINT/SIGTERM, ``stop_after`` or the goal.
 
     Returns:
-        The exit code, 0 once the bridge has stopped.
+        The exit code, 0 once the bridge has stopped, ``IDLE_EXIT_STATUS`` when it gave up with
+        no node driving it (``idle_timeout``).
     """
     settings.validate()
     import mazesim
@@ -927,4 +952,4 @@ def run_bridge(settings: BridgeSettings) -> int:
         file=sys.stderr,
         flush=True,
     )
-    return 0
+    return IDLE_EXIT_STATUS if bridge.idle.expired else 0

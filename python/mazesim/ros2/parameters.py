@@ -144,6 +144,8 @@ def bridge_parameters(settings: Any) -> list[Parameter]:
          "lockstep: the period of the driving node's timer, s (0: a step per command)"),
         ("command_deadline", float(settings.command_deadline), "--command-deadline",
          "lockstep: wall s before stepping without a command (0: waits)"),
+        ("idle_timeout", float(settings.idle_timeout), "--idle-timeout",
+         "wall s with no command writer before giving up (0: never)"),
     ]  # fmt: skip
     return [USE_SIM_TIME] + [
         Parameter(name, value, f"{what} ({option}; restart the bridge to change it)")
