@@ -16,7 +16,8 @@ from mazesim.actions import wheel_speeds
 from mazesim.errors import InvalidArgumentError
 from mazesim.ros import standard, topics
 from mazesim.ros.local_master import LocalMaster
-from mazesim.ros.robots import next_round, robot_namespaces
+from mazesim.ros.lockstep import stamp_nanoseconds
+from mazesim.ros.robots import frame_prefix, next_round, robot_namespaces
 from ros_support import needs_ros, spawn_bridge, topic_types
 
 DRIVER = Path(__file__).with_name("several_driver.py")
@@ -186,3 +187,78 @@ def test_realtime_steps_every_robot_with_its_last_command(
     assert west[-1][3] > west[0][3] and north[-1][3] > north[0][3]  # simulated time ran
     assert west[-1][0] > west[0][0]  # driven along +x
     assert north[-1][:3] == north[0][:3]  # never commanded: stands
+
+
+@needs_ros
+def test_every_robot_publishes_odom_and_tf_in_frames_named_after_its_namespace(
+    master: LocalMaster, tmp_path: Path
+) -> None:
+    """Each robot's ``odom`` in its namespace, its frames ``<robot>/odom``, ``<robot>/base_link``
+    ... on the one ``/tf`` and ``/tf_static``, as tf2 reads them: the in-process run's poses."""
+    world_file = tmp_path / "three.toml"
+    world_file.write_text(THREE_ROBOTS)
+    world = mazesim.load_world(str(world_file))
+    namespaces = robot_namespaces([str(robot["name"]) for robot in world.robots])
+    names = [namespace.strip("/") for namespace in namespaces]
+    assert [frame_prefix(namespace) for namespace in namespaces] == [f"{n}/" for n in names]
+    assert frame_prefix("") == ""  # a world of one robot: its frames as they are
+    steps = _commands()[:6]
+    commands_file = tmp_path / "commands.json"
+    commands_file.write_text(json.dumps(steps))
+    frames = standard.sensor_frames(mazesim.Simulator(world, seed=0).robot_profile(0))
+    sensors = [frames[0].frame, frames[-1].frame]
+    bridge = spawn_bridge(master, "--world", str(world_file))
+    driver = subprocess.run(
+        [
+            sys.executable,
+            str(DRIVER),
+            json.dumps(namespaces),
+            str(commands_file),
+            json.dumps(sensors),
+        ],
+        env=master.env,
+        capture_output=True,
+        text=True,
+        timeout=300,
+        check=False,
+    )
+    assert driver.returncode == 0, driver.stdout + driver.stderr
+    served = json.loads(driver.stdout.strip().splitlines()[-1])
+    kinds = topic_types(master)
+    bridge.terminate()
+    bridge.wait(timeout=60)
+    for namespace in namespaces:
+        assert kinds[f"{namespace}/odom"] == "nav_msgs/Odometry"
+        assert kinds[f"{namespace}/{sensors[0]}"] == "sensor_msgs/Range"
+    assert kinds["/tf"] == kinds["/tf_static"] == "tf2_msgs/TFMessage"
+    assert "/odom" not in kinds and "/west/tf" not in kinds  # one /tf, no robot outside
+    expected = _in_process(world, steps)
+    assert served["poses"] == expected
+    for index, name in enumerate(names):
+        odoms = [
+            [f"{name}/odom", f"{name}/base_link", x, y, *standard.yaw_quaternion(yaw)[2:]]
+            + [stamp_nanoseconds(seconds)]
+            for x, y, yaw, seconds in expected[index]
+        ]
+        assert served["odom"][index] == odoms  # bit for bit, every step
+        assert served["tf"][index] == [pytest.approx(odom[2:6], abs=1e-12) for odom in odoms]
+        by_frame = {frame.frame: frame for frame in frames}
+        assert (
+            served["static"][index]
+            == [
+                pytest.approx([0.0, 0.0, 0.0, 1.0], abs=1e-12),  # map -> <robot>/odom
+                *(
+                    pytest.approx(
+                        [
+                            by_frame[s].x,
+                            by_frame[s].y,
+                            *standard.yaw_quaternion(by_frame[s].yaw)[2:],
+                        ],
+                        abs=1e-12,
+                    )
+                    for s in sensors
+                ),
+            ]
+        )
+    # The robots moved apart: tf2 kept each robot's frames its own.
+    assert served["tf"][0][-1] != served["tf"][1][-1]

@@ -7,7 +7,8 @@ nodes in a namespace of its own, the bridges publish robot ``west``'s topics as 
 ``/west/odom``... and read its commands on ``/west/cmd_vel``, ``/west/motor`` and
 ``/west/action``; ``/clock`` is one for all. :func:`robot_namespaces` turns the world's robot
 names into ROS names; a :class:`RobotOf` is one robot of a simulator, read as a simulator of one
-robot is; :func:`next_round` is the lockstep rule over several robots.
+robot is; :func:`frame_prefix` names a robot's frames after its namespace; :func:`next_round` is
+the lockstep rule over several robots.
 """
 
 from __future__ import annotations
@@ -21,7 +22,7 @@ from mazesim._core import Simulator
 from mazesim.errors import InvalidArgumentError, _shown
 from mazesim.webots.shared_world import RobotView
 
-__all__ = ["RobotOf", "next_round", "robot_namespaces", "step_rounds"]
+__all__ = ["RobotOf", "frame_prefix", "next_round", "robot_namespaces", "step_rounds"]
 
 #: What a ROS name token may not hold (it holds letters, digits and underscores).
 _NOT_IN_NAME = re.compile(r"[^A-Za-z0-9_]")
@@ -49,6 +50,14 @@ def robot_namespaces(names: Sequence[str]) -> list[str]:
             )
         namespaces.append(namespace)
     return namespaces
+
+
+def frame_prefix(namespace: str) -> str:
+    """What the frames of the robot in ``namespace`` start with, in both bridges: ``"west/"``
+    for ``"/west"`` (``west/odom``, ``west/base_link``...), ``""`` for no namespace, as
+    ros2_controllers' diff drive controller names its frames after its namespace."""
+    name = namespace.strip("/")
+    return name + "/" if name else ""
 
 
 class RobotOf(RobotView):

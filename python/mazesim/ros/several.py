@@ -1,12 +1,18 @@
 """The ROS 1 bridge on a world of several robots: each robot in a namespace of its own.
 
-As the e-puck's ROS 1 driver runs several robots (``multi_epuck.launch`` starts each robot's
-nodes in ``<group ns="epuck_robot_0">``), the bridge serves robot ``west`` of the world as
+As the e-puck's ROS 1 driver runs several robots (``multi_epuck.launch`` starts each robot's nodes
+in ``<group ns="epuck_robot_0">``), the bridge serves robot ``west`` of the world as
 ``/west/sensors``, ``/west/pose`` and ``/west/sensor_data`` (robots with Sharp sensors), and reads
 its commands on ``/west/motor``, ``/west/action`` and ``/west/cmd_vel``, in the layouts of
 :mod:`mazesim.ros.topics` and :mod:`mazesim.ros.standard`; ``/clock`` is one for all, and so is
-``control_step_ms``. The namespaces are the ROS 2 bridge's (:func:`mazesim.ros.robots.
-robot_namespaces`: the robot's name, with what a ROS name may not hold replaced by ``_``).
+``control_step_ms``. Its standard messages (:class:`mazesim.ros.standard.StandardPublishers`) are
+``/west/odom``, ``/west/ps0``... and ``/west/scan``, in frames named after the namespace
+(:func:`mazesim.ros.robots.frame_prefix`: ``west/odom``, ``west/base_link``, ``west/ps0``...), as
+the ROS 2 bridge's ``--frame-prefix`` names them; every robot's ``odom`` -> ``base_link`` goes on
+the one ``/tf`` in one message per step, and every robot's static frames (``map`` -> ``west/odom``
+among them) in the one latched ``/tf_static`` message; ``map`` is one for all. The namespaces are
+the ROS 2 bridge's (:func:`mazesim.ros.robots.robot_namespaces`: the robot's name, with what a ROS
+name may not hold replaced by ``_``).
 
 In ``lockstep`` the world steps once every robot whose command topics have a publisher connected
 has sent its command for the step (:func:`mazesim.ros.robots.next_round`, the rule of both
@@ -18,9 +24,9 @@ publisher is connected, every robot's state goes out again (a controller that co
 the bridge listened gets another). In ``realtime`` the world steps on its own with every robot's
 last wheel speeds.
 
-The single-robot bridge's ``command_period``, ``command_deadline``, ``stop_at_goal`` and ``bag``,
-the per-sensor ``Range`` topics, ``odom``, ``/tf``, ``scan`` and the reset services are not
-offered on several robots: the bridge refuses those settings rather than ignore them.
+The single-robot bridge's ``command_period``, ``command_deadline``, ``stop_at_goal`` and ``bag`` and
+the reset services are not offered on several robots: the bridge refuses those settings rather than
+ignore them.
 """
 
 from __future__ import annotations
@@ -37,7 +43,7 @@ from mazesim.errors import InvalidArgumentError, _shown
 from mazesim.ros import standard, topics
 from mazesim.ros._ros import publisher
 from mazesim.ros.lockstep import IdleTimeout, UnansweredState, stamp_nanoseconds
-from mazesim.ros.robots import RobotOf, robot_namespaces, step_rounds
+from mazesim.ros.robots import RobotOf, frame_prefix, robot_namespaces, step_rounds
 
 __all__ = ["RobotChannel", "SeveralRobotsBridge", "refuse_single_robot_settings"]
 
@@ -93,6 +99,15 @@ class RobotChannel:
             names = [f"{name} cm" for name in view.robot.distance_sensor_names]
             self.layouts["sensor_data"] = bridge.layout([*names, "checkpoint"])
             self.sensor_data = bridge.make_publisher(f"{namespace}/{topics.SENSOR_DATA_TOPIC}")
+        #: ``odom``, the Range topics and ``scan`` in the namespace, frames ``west/odom``...
+        self.standard = standard.StandardPublishers(
+            ros,
+            view,  # type: ignore[arg-type]
+            bridge.make_publisher,
+            namespace,
+            frame_prefix(namespace),
+            transforms=False,
+        )
         robot = view.robot
         # No queue limit: in lockstep every command is one step and none may be dropped.
         self.subscribers = [
@@ -168,6 +183,14 @@ class SeveralRobotsBridge:
             RobotChannel(self, RobotOf(simulator, index), namespace)
             for index, namespace in enumerate(namespaces)
         ]
+        # Every robot's transforms in one message: a latched topic keeps only the last one.
+        self.tf_publisher = self.make_publisher(standard.TF_TOPIC, ros.TFMessage)
+        static = [made for robot in self.robots for made in robot.standard.static_transforms()]
+        self.tf_static_publisher = ros.rospy.Publisher(
+            standard.TF_STATIC_TOPIC, ros.TFMessage, queue_size=1, latch=True
+        )
+        self.tf_static_publisher.publish(ros.TFMessage(transforms=static))
+        self.map_publisher = standard.latched_map(ros, simulator.world)
         self.publish_state()
         self.unanswered.went_out(time.monotonic())
 
@@ -186,11 +209,16 @@ class SeveralRobotsBridge:
         return self.ros.Float64MultiArray(layout=layout, data=values)
 
     def publish_state(self) -> None:
-        """Publishes ``/clock``, then every robot's state, for the current step."""
+        """Publishes ``/clock``, every robot's standard messages, ``/tf`` with every robot's
+        transform, then every robot's state, for the current step."""
         nanoseconds = stamp_nanoseconds(self.simulator.time)
-        clock = self.ros.Clock(clock=self.ros.rospy.Time(nanoseconds // 10**9, nanoseconds % 10**9))
+        stamp = self.ros.rospy.Time(nanoseconds // 10**9, nanoseconds % 10**9)
+        clock = self.ros.Clock(clock=stamp)
         self.clock_publisher.publish(clock)
-        self.last_state = [(self.clock_publisher, clock)]
+        moved = [made for robot in self.robots for made in robot.standard.publish(stamp)]
+        transforms = self.ros.TFMessage(transforms=moved)
+        self.tf_publisher.publish(transforms)
+        self.last_state = [(self.clock_publisher, clock), (self.tf_publisher, transforms)]
         for robot in self.robots:
             self.last_state += robot.publish(self)
 

@@ -54,6 +54,7 @@ __all__ = [
     "StandardPublishers",
     "body_velocity",
     "has_scan",
+    "latched_map",
     "ranges",
     "scan_angles",
     "scan_ranges",
@@ -234,52 +235,83 @@ def scan_ranges(distances: dict[str, float]) -> list[float]:
     return ranges
 
 
+def latched_map(ros: Any, world: Any) -> Any:
+    """Publishes ``world``'s walls as a ``nav_msgs/OccupancyGrid`` in frame ``map``, latched and
+    sent once as map_server publishes a map (relative: in the bridge's namespace, as the other
+    topics); returns the publisher."""
+    cells, x0, y0 = occupied_cells(world)
+    grid = ros.OccupancyGrid()
+    grid.header.stamp = ros.rospy.Time(0)
+    grid.header.frame_id = MAP_FRAME
+    grid.info.resolution = MAP_RESOLUTION
+    grid.info.height, grid.info.width = cells.shape
+    grid.info.origin.position.x, grid.info.origin.position.y = x0, y0
+    grid.info.origin.orientation.w = 1.0
+    grid.data = cells.ravel().tolist()
+    made = ros.rospy.Publisher(MAP_TOPIC.lstrip("/"), ros.OccupancyGrid, queue_size=1, latch=True)
+    made.publish(grid)
+    return made
+
+
 class StandardPublishers:
     """Publishes the standard messages of one simulator; the bridge calls it after each step.
 
     Args:
         ros: The namespace of :func:`mazesim.ros._ros.require_ros`.
-        simulator: The simulator whose state is published.
+        simulator: The simulator whose state is published (or one robot of a simulator of
+            several, :class:`mazesim.ros.robots.RobotOf`).
         make_publisher: Creates a publisher from a topic and a message class, as the bridge's
             other topics are created (synchronous in lockstep, latched).
+        namespace: The robot's namespace (``"/west"``): its ``odom``, Range topics and ``scan``
+            are ``/west/odom``...; ``""`` (a world of one robot): relative to the node's.
+        frame_prefix: What every frame name starts with (``"west/"``,
+            :func:`mazesim.ros.robots.frame_prefix`), ``""`` for none.
+        transforms: Whether it sends ``/tf``, ``/tf_static`` and ``map`` itself. A robot of
+            several leaves them to its bridge, which sends every robot's transforms in one
+            message (a latched topic keeps one message): :meth:`publish` returns the robot's
+            ``/tf`` transforms, :meth:`static_transforms` its ``/tf_static`` ones.
     """
 
-    def __init__(self, ros: Any, simulator: Simulator, make_publisher: Any) -> None:
+    def __init__(
+        self,
+        ros: Any,
+        simulator: Simulator,
+        make_publisher: Any,
+        namespace: str = "",
+        frame_prefix: str = "",
+        transforms: bool = True,
+    ) -> None:
         self.ros = ros
         self.simulator = simulator
+        self.namespace = namespace
+        self.prefix = frame_prefix
         self.frames = sensor_frames(simulator.robot)
         self.previous: tuple[float, float, float] | None = None
         self.previous_time = 0.0
-        self.odom_publisher = make_publisher(ODOM_TOPIC, ros.Odometry)
-        self.tf_publisher = make_publisher(TF_TOPIC, ros.TFMessage)
-        self.range_publishers = [make_publisher(f.frame, ros.Range) for f in self.frames]
+        self.odom_publisher = make_publisher(self._topic(ODOM_TOPIC), ros.Odometry)
+        self.tf_publisher = make_publisher(TF_TOPIC, ros.TFMessage) if transforms else None
+        self.range_publishers = [
+            make_publisher(self._topic(f.frame), ros.Range) for f in self.frames
+        ]
         self.scan_publisher = None
         if has_scan(self.frames):
-            self.scan_publisher = make_publisher(SCAN_TOPIC, ros.LaserScan)
+            self.scan_publisher = make_publisher(self._topic(SCAN_TOPIC), ros.LaserScan)
+        if not transforms:
+            return
         # Latched and sent once: the sensors do not move on the robot.
         self.tf_static_publisher = ros.rospy.Publisher(
             TF_STATIC_TOPIC, ros.TFMessage, queue_size=1, latch=True
         )
-        self.tf_static_publisher.publish(ros.TFMessage(transforms=self._sensor_transforms()))
-        # Latched and sent once, as map_server publishes a map (relative: in the bridge's
-        # namespace, as the other topics).
-        self.map_publisher = ros.rospy.Publisher(
-            MAP_TOPIC.lstrip("/"), ros.OccupancyGrid, queue_size=1, latch=True
-        )
-        self.map_publisher.publish(self._map())
+        self.tf_static_publisher.publish(ros.TFMessage(transforms=self.static_transforms()))
+        self.map_publisher = latched_map(ros, simulator.world)
 
-    def _map(self) -> Any:
-        """The world's walls as a ``nav_msgs/OccupancyGrid`` in frame ``map``."""
-        cells, x0, y0 = occupied_cells(self.simulator.world)
-        grid = self.ros.OccupancyGrid()
-        grid.header.stamp = self.ros.rospy.Time(0)
-        grid.header.frame_id = MAP_FRAME
-        grid.info.resolution = MAP_RESOLUTION
-        grid.info.height, grid.info.width = cells.shape
-        grid.info.origin.position.x, grid.info.origin.position.y = x0, y0
-        grid.info.origin.orientation.w = 1.0
-        grid.data = cells.ravel().tolist()
-        return grid
+    def _topic(self, name: str) -> str:
+        """Topic ``name`` in the robot's namespace (relative without one)."""
+        return f"{self.namespace}/{name}" if self.namespace else name
+
+    def frame(self, name: str) -> str:
+        """The frame ``name`` (``base_link``) as this robot's messages give it."""
+        return self.prefix + name
 
     def _transform(
         self, stamp: Any, parent: str, child: str, x: float, y: float, yaw: float
@@ -294,21 +326,24 @@ class StandardPublishers:
         rotation.x, rotation.y, rotation.z, rotation.w = yaw_quaternion(yaw)
         return message
 
-    def _sensor_transforms(self) -> list[Any]:
+    def static_transforms(self) -> list[Any]:
+        """The ``/tf_static`` transforms: ``base_link`` -> each sensor frame (and the scan's),
+        and ``map`` -> ``odom``, the identity."""
         stamp = self.ros.rospy.Time(0)
+        base = self.frame(BASE_FRAME)
         transforms = [
-            self._transform(stamp, BASE_FRAME, f.frame, f.x, f.y, f.yaw) for f in self.frames
+            self._transform(stamp, base, self.frame(f.frame), f.x, f.y, f.yaw) for f in self.frames
         ]
         if self.scan_publisher is not None:
-            scan = self._transform(stamp, BASE_FRAME, SCAN_FRAME, 0.0, 0.0, 0.0)
+            scan = self._transform(stamp, base, self.frame(SCAN_FRAME), 0.0, 0.0, 0.0)
             scan.transform.translation.z = SCAN_HEIGHT
             transforms.append(scan)
-        transforms.append(self._transform(stamp, MAP_FRAME, ODOM_FRAME, 0.0, 0.0, 0.0))
+        transforms.append(self._transform(stamp, MAP_FRAME, self.frame(ODOM_FRAME), 0.0, 0.0, 0.0))
         return transforms
 
-    def publish(self, stamp: Any) -> None:
+    def publish(self, stamp: Any) -> list[Any]:
         """Publishes ``odom``, ``/tf``, every Range topic and ``scan`` for the current step at
-        ``stamp``."""
+        ``stamp``; returns the ``/tf`` transforms (sent by the bridge when it sends them)."""
         ros, simulator = self.ros, self.simulator
         pose = simulator.pose
         velocity = BodyVelocity(0.0, 0.0, 0.0)
@@ -319,8 +354,8 @@ class StandardPublishers:
         x, y, yaw = pose
         odom = ros.Odometry()
         odom.header.stamp = stamp
-        odom.header.frame_id = ODOM_FRAME
-        odom.child_frame_id = BASE_FRAME
+        odom.header.frame_id = self.frame(ODOM_FRAME)
+        odom.child_frame_id = self.frame(BASE_FRAME)
         odom.pose.pose.position.x = x
         odom.pose.pose.position.y = y
         orientation = odom.pose.pose.orientation
@@ -329,8 +364,11 @@ class StandardPublishers:
         odom.twist.twist.linear.y = velocity.leftward
         odom.twist.twist.angular.z = velocity.turn
         self.odom_publisher.publish(odom)
-        transform = self._transform(stamp, ODOM_FRAME, BASE_FRAME, x, y, yaw)
-        self.tf_publisher.publish(ros.TFMessage(transforms=[transform]))
+        transform = self._transform(
+            stamp, self.frame(ODOM_FRAME), self.frame(BASE_FRAME), x, y, yaw
+        )
+        if self.tf_publisher is not None:
+            self.tf_publisher.publish(ros.TFMessage(transforms=[transform]))
         distances = ranges(simulator)
         for frame, distance, range_publisher in zip(self.frames, distances, self.range_publishers):
             message = ros.Range(
@@ -341,7 +379,7 @@ class StandardPublishers:
                 range=distance,
             )
             message.header.stamp = stamp
-            message.header.frame_id = frame.frame
+            message.header.frame_id = self.frame(frame.frame)
             range_publisher.publish(message)
         if self.scan_publisher is not None:
             by_name = {frame.frame: distance for frame, distance in zip(self.frames, distances)}
@@ -356,5 +394,6 @@ class StandardPublishers:
                 ranges=scan_ranges(by_name),
             )
             scan.header.stamp = stamp
-            scan.header.frame_id = SCAN_FRAME
+            scan.header.frame_id = self.frame(SCAN_FRAME)
             self.scan_publisher.publish(scan)
+        return [transform]

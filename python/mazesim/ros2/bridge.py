@@ -69,7 +69,7 @@ from mazesim.ros2.nodes import leaves_signals_as_found
 from mazesim.ros2.occupancy import map_topics, occupancy_grid
 from mazesim.ros2.parameters import ParameterServers, bridge_parameters
 from mazesim.ros2.qos import CLOCK, COMMAND, TF_STATIC, IncompatibleQos, TopicQos
-from mazesim.ros2.robots import RobotOf, robot_namespaces, step_rounds
+from mazesim.ros2.robots import RobotOf, frame_prefix, robot_namespaces, step_rounds
 from mazesim.ros2.ros_args import RosArguments
 from mazesim.ros2.state import CLOCK_TOPIC, CLOCK_TYPE, StateTopics
 from mazesim.ros2.unpublished import UnpublishedTopics
@@ -332,7 +332,7 @@ class Ros2Bridge:
         )
         imu_seed = settings.seed if settings.noise else None
         if simulator.num_robots == 1:
-            prefix = own[1:] + "/" if settings.frame_prefix else ""
+            prefix = frame_prefix(own) if settings.frame_prefix else ""
             states = [
                 StateTopics(
                     simulator,
@@ -351,7 +351,7 @@ class Ros2Bridge:
                     settings.distro,
                     namespace,
                     clock=False,
-                    frame_prefix=namespace[1:] + "/" if settings.frame_prefix else "",
+                    frame_prefix=frame_prefix(namespace) if settings.frame_prefix else "",
                     imu_seed=imu_seed,
                 )
                 for i, namespace in enumerate(namespaces)

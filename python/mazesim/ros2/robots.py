@@ -3,6 +3,6 @@
 
 from __future__ import annotations
 
-from mazesim.ros.robots import RobotOf, next_round, robot_namespaces, step_rounds
+from mazesim.ros.robots import RobotOf, frame_prefix, next_round, robot_namespaces, step_rounds
 
-__all__ = ["RobotOf", "next_round", "robot_namespaces", "step_rounds"]
+__all__ = ["RobotOf", "frame_prefix", "next_round", "robot_namespaces", "step_rounds"]
