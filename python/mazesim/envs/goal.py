@@ -43,7 +43,27 @@ REWARD_TYPES = ("sparse", "dense")
 Observation = dict[str, npt.NDArray[np.float32]]
 
 
-class MazeGoalEnv(gymnasium.Env[Observation, Any]):
+class _MazeAttributes:
+    """Reads the public attributes a goal env does not define from the maze env it wraps (the
+    attribute named by ``_wrapped``): ``observation_names``, ``world``, ``options``,
+    ``goal_disc`` and whatever the maze env has, as ``env.unwrapped`` gives them for every task."""
+
+    __slots__ = ()
+    _wrapped = ""
+
+    def __getattr__(self, name: str) -> Any:
+        # Only when the usual lookup fails; the wrapped env is read from the instance's own dict,
+        # so a copy being built (which has none yet) is told the attribute is missing.
+        inner = self.__dict__.get(self._wrapped)
+        if name.startswith("_") or inner is None:
+            raise AttributeError(f"{type(self).__name__} has no attribute {name}")
+        try:
+            return getattr(inner, name)
+        except AttributeError:
+            raise AttributeError(f"{type(self).__name__} has no attribute {name}") from None
+
+
+class MazeGoalEnv(_MazeAttributes, gymnasium.Env[Observation, Any]):
     """A maze env whose goal is observed apart and whose reward :meth:`compute_reward` gives.
 
     Args:
@@ -58,6 +78,7 @@ class MazeGoalEnv(gymnasium.Env[Observation, Any]):
     """
 
     metadata: dict[str, Any] = EPuckMazeEnv.metadata
+    _wrapped = "maze"
 
     def __init__(
         self,
@@ -154,7 +175,7 @@ class MazeGoalEnv(gymnasium.Env[Observation, Any]):
         return {**info, "is_success": bool(within)}
 
 
-class MazeGoalVectorEnv(VectorEnv[Observation, Any, Any]):
+class MazeGoalVectorEnv(_MazeAttributes, VectorEnv[Observation, Any, Any]):
     """N goal envs stepped together by the batch engine: ``gymnasium.make_vec`` of a
     goal-conditioned task (its ``vector_entry_point``).
 
@@ -180,6 +201,7 @@ class MazeGoalVectorEnv(VectorEnv[Observation, Any, Any]):
     """
 
     metadata: dict[str, Any] = EPuckMazeVectorEnv.metadata
+    _wrapped = "mazes"
 
     def __init__(
         self,
