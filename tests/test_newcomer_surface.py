@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import importlib
 import io
+from pathlib import Path
 
 import pytest
 
@@ -52,3 +53,63 @@ def test_a_notebook_draws_a_world_and_a_simulator_not_their_repr() -> None:
     moved = _picture(sim)[2]
     assert len({drawn, at_start, moved}) == 3  # the robot is drawn where it is
     assert repr(world).startswith("World(") and "\n" not in repr(world)
+
+
+@pytest.mark.parametrize(
+    ("argv", "told"),
+    [
+        (["worlds", "export", "seed-maze"], "did you mean '--export' for 'export'?"),
+        (["demo", "seconds", "5"], "did you mean '--seconds' for 'seconds'?"),
+        (["eval", "json"], "did you mean '--json' for 'json'?"),
+        (["train", "world", "seed-maze"], "did you mean '--world' for 'world'?"),
+        (["eval", "Episodes=3"], "did you mean '--episodes' for 'Episodes'?"),
+        (["replay", "run.json", "-o", "x.html", "episode", "2"], "'--episode' for 'episode'"),
+    ],
+)
+def test_an_option_typed_without_its_dashes_is_told_the_option(
+    capsys: pytest.CaptureFixture[str], argv: list[str], told: str
+) -> None:
+    from mazesim.cli import main
+
+    assert main(argv) == 2
+    line = capsys.readouterr().err.strip().splitlines()[-1]
+    assert line.startswith(f"mazesim {argv[0]}: error: unrecognized arguments: "), line
+    assert told in line, line
+
+
+@pytest.mark.parametrize("argv", [["demo", "banana"], ["eval", "5"], ["worlds", "seed-maze"]])
+def test_a_stray_word_like_no_option_is_told_none(
+    capsys: pytest.CaptureFixture[str], argv: list[str]
+) -> None:
+    from mazesim.cli import main
+
+    assert main(argv) == 2
+    line = capsys.readouterr().err.strip().splitlines()[-1]
+    assert line.endswith(f"unrecognized arguments: {argv[1]}"), line
+
+
+@pytest.mark.parametrize(
+    ("argv", "told"),
+    [
+        (["show", "seed-maze", "out", "q.png"], "show: error: argument WORLD: 'out' is no file"),
+        (["replay", "out", "-o", "x.html"], "replay: error: argument RUN: 'out' is no file"),
+    ],
+)
+def test_an_option_without_dashes_taken_as_an_argument_is_told_the_option(
+    capsys: pytest.CaptureFixture[str],
+    tmp_path: Path,
+    monkeypatch: pytest.MonkeyPatch,
+    argv: list[str],
+    told: str,
+) -> None:
+    from mazesim.cli import main
+
+    monkeypatch.chdir(tmp_path)
+    assert main(argv) == 2
+    line = capsys.readouterr().err.strip().splitlines()[-1]
+    assert line == f"mazesim {told}; did you mean the option '--out'?", line
+    assert list(tmp_path.iterdir()) == []  # nothing written
+    # A file of that name is what was meant: it is taken, not refused.
+    (tmp_path / "out").write_text("not a world\n", encoding="utf-8")
+    assert main(argv) == 2
+    assert "did you mean the option" not in capsys.readouterr().err

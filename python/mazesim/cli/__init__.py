@@ -20,7 +20,7 @@ from typing import Any, NoReturn
 import mazesim
 from mazesim._error_tree import io_error
 from mazesim.cli._help import CommandParser, examples
-from mazesim.errors import MazesimError, _closest_name, _command_line, _shown
+from mazesim.errors import MazesimError, _closest_name, _command_line, _plain, _shown
 
 __all__ = ["COMMANDS", "build_parser", "main"]
 
@@ -155,19 +155,62 @@ def _built_in_meant(words: list[str]) -> list[str]:
     return meant
 
 
-def _refuse_unknown(
-    parser: argparse.ArgumentParser, args: argparse.Namespace, unknown: list[str]
-) -> NoReturn:
-    """Refuses arguments the command does not take with the usage of the command run (``mazesim
-    demo``, ``mazesim webots run``), not mazesim's, and, for a mistyped option, the one meant."""
+def _command_run(
+    parser: argparse.ArgumentParser, args: argparse.Namespace
+) -> argparse.ArgumentParser:
+    """The parser of the command ``args`` run (``mazesim demo``, ``mazesim webots run``)."""
     while True:
         commands = next(
             (a for a in parser._actions if isinstance(a, argparse._SubParsersAction)), None
         )
         chosen = None if commands is None else getattr(args, commands.dest, None)
         if commands is None or chosen not in commands.choices:
-            break
+            return parser
         parser = commands.choices[chosen]
+
+
+def _refuse_dashless_options(parser: argparse.ArgumentParser, args: argparse.Namespace) -> None:
+    """Refuses a word taken as an argument without an option (``mazesim show seed-maze out
+    x.png``: 'out' taken as a WORLD) that is the name of one of the command's options and names
+    no file and no built-in world, robot profile or controller: an option typed without its
+    dashes, told the option."""
+    parser = _command_run(parser, args)
+    options = {
+        _plain(option.lstrip("-")): option
+        for action in parser._actions
+        for option in action.option_strings
+    }
+    for action in parser._actions:
+        if action.option_strings or isinstance(action, argparse._SubParsersAction):
+            continue
+        given = getattr(args, action.dest, None)
+        for word in given if isinstance(given, list) else [given]:
+            if (
+                isinstance(word, str)
+                and _plain(word) in options
+                and not os.path.lexists(word)
+                and word not in _built_in_names()
+            ):
+                parser.error(
+                    f"argument {action.metavar or action.dest}: {_shown(word)} is no file; did "
+                    f"you mean the option {_shown(options[_plain(word)])}?"
+                )
+
+
+def _built_in_names() -> set[str]:
+    """The names of the built-in worlds, robot profiles and controllers: what a word given
+    without an option may name besides a file."""
+    from mazesim._core import builtin_world_names, robot_profile_names
+
+    return {*builtin_world_names(), *robot_profile_names(), *BUILT_IN_CONTROLLERS}
+
+
+def _refuse_unknown(
+    parser: argparse.ArgumentParser, args: argparse.Namespace, unknown: list[str]
+) -> NoReturn:
+    """Refuses arguments the command does not take with the usage of the command run (``mazesim
+    demo``, ``mazesim webots run``), not mazesim's, and, for a mistyped option, the one meant."""
+    parser = _command_run(parser, args)
     # Compared without their dashes, and closer than names must be: short words look alike. The
     # start of one option's name (`demo --sec`) is told that name: options are taken whole.
     options = {
@@ -182,6 +225,15 @@ def _refuse_unknown(
         f"{_shown(options[closest])} for {_shown(word)}"
         for word, closest in closest_of.items()
         if closest is not None
+    ]
+    # An option typed without its dashes (`worlds export seed-maze`, `eval json`, `demo seconds
+    # 5`): a word no argument takes that is, or nearly is, the name of one of the command's
+    # options is told that option, whichever option it is.
+    bare = [word.partition("=")[0] for word in unknown if word[:1].isalpha()]
+    meant += [
+        f"{_shown(options[closest])} for {_shown(word)}"
+        for word in bare
+        if (closest := _closest_name(word, list(options), 0.8)) is not None
     ]
     elsewhere = {
         word: taken
@@ -355,6 +407,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         args, unknown = parser.parse_known_args(arguments)
         if unknown:
             _refuse_unknown(parser, args, unknown)
+        _refuse_dashless_options(parser, args)
     except SystemExit as exit_request:
         # --help and --version exit with None (success); usage errors with 2.
         code = exit_request.code
