@@ -10,6 +10,12 @@ use crate::error::{Error, Result};
 /// physics step of 4 mm (the e-puck's top speed over 32 ms) is still resolved to 1.5 %.
 pub const MAX_COORDINATE: f64 = 1_000.0;
 
+/// Largest side of a maze cell, metres. A cell is a corridor a robot drives through: the
+/// e-puck's mazes have 0.25 m cells, a car-sized robot's a few metres. A larger number is most
+/// often a size in centimetres or millimetres written as metres (`cell_size = 25` for 25 cm
+/// makes a 125 m maze of the seed maze), so it is refused with a message naming the unit.
+pub const MAX_CELL_SIZE: f64 = 10.0;
+
 /// Largest angle (a yaw) in radians, either sign; beyond it an `f32` angle is too coarse to turn by.
 pub const MAX_ANGLE: f64 = 1_000.0;
 

@@ -103,6 +103,18 @@ fn near<'a>(
     }
 }
 
+/// Refuses robot `index`'s wheel command unless both speeds are finite: the one check of a
+/// command, whether it is stepped at once or set to be stepped later (`Swarm::set_command`),
+/// so a NaN is refused where it is given, not at a later step.
+fn check_command(index: usize, left: f64, right: f64) -> Result<()> {
+    if left.is_finite() && right.is_finite() {
+        return Ok(());
+    }
+    Err(Error::InvalidAction(format!(
+        "expected finite wheel speeds in rad/s, found ({left}, {right}) for robot {index}"
+    )))
+}
+
 /// Steps the robots of one world one control step together, robot `i` with wheel speeds
 /// `command(i)` (rad/s, left and right). Every command is checked before any robot moves.
 pub fn step_robots(robots: &mut [Simulator], command: impl Fn(usize) -> [f64; 2]) -> Result<()> {
@@ -112,11 +124,7 @@ pub fn step_robots(robots: &mut [Simulator], command: impl Fn(usize) -> [f64; 2]
     }
     for i in 0..robots.len() {
         let [left, right] = command(i);
-        if !(left.is_finite() && right.is_finite()) {
-            return Err(Error::InvalidAction(format!(
-                "expected finite wheel speeds in rad/s, found ({left}, {right}) for robot {i}"
-            )));
-        }
+        check_command(i, left, right)?;
     }
     let world = robots[0].world().clone();
     let carried = carrying(&world);
@@ -418,6 +426,7 @@ impl Swarm {
     /// Sets robot `index`'s wheel command for the next steps (rad/s; checked when stepped).
     pub fn set_command(&mut self, index: usize, left: f64, right: f64) -> Result<()> {
         self.robot(index)?;
+        check_command(index, left, right)?;
         self.commands[index] = [left, right];
         Ok(())
     }

@@ -62,16 +62,16 @@ fn width_problem(width: usize) -> String {
 /// Refuses cell walls that do not fit their cells: a wall must be thinner than the cell it
 /// bounds, or neighbouring walls overlap and no corridor is left between them. The one check of
 /// a cell maze's sizes, for a generated maze and a drawn one (`[grid]`) alike.
-/// A cell is at most `MAX_COORDINATE` a side: the smallest maze (2 x 2 cells) then still fits
-/// the coordinates every wall and pose is bounded by.
+/// A cell is at most `MAX_CELL_SIZE` a side (far inside the coordinates every wall and pose is
+/// bounded by): a larger one is a size in centimetres or millimetres taken for metres.
 pub fn check_cell_walls(cell_size: f64, wall_thickness: f64) -> Result<(), String> {
     let sizes_ok = cell_size.is_finite() && wall_thickness.is_finite() && cell_size > 0.0;
     if sizes_ok && wall_thickness > 0.0 && wall_thickness < cell_size {
-        if cell_size > crate::limits::MAX_COORDINATE {
+        let most = crate::limits::MAX_CELL_SIZE;
+        if cell_size > most {
             return Err(format!(
-                "expected a cell size of at most {} m (the bound of every coordinate), found \
-                 {cell_size:?} m",
-                crate::limits::MAX_COORDINATE
+                "expected a cell size in metres of at most {most:?} m, found {cell_size:?} m \
+                 (is it in centimetres or millimetres? 25 cm is 0.25)"
             ));
         }
         return Ok(());
