@@ -10,10 +10,12 @@ import pytest
 
 from mazesim.errors import InvalidArgumentError
 from mazesim.ros.lockstep import (
+    MAX_LAG_STEPS,
     RESEND_S,
     SKIPPED_TICK_S,
     CommandDeadline,
     IdleTimeout,
+    RealTimePace,
     TimerHold,
     UnansweredState,
 )
@@ -210,3 +212,18 @@ def test_an_idle_timeout_of_zero_never_gives_up() -> None:
 def test_an_idle_timeout_that_is_no_time_is_refused(seconds: float) -> None:
     with pytest.raises(InvalidArgumentError, match="expected an idle timeout in seconds >= 0"):
         IdleTimeout(seconds, now=0.0)
+
+
+def test_a_real_time_bridge_catches_up_a_few_steps_and_starts_again_after_more() -> None:
+    pace = RealTimePace(0.1, now=0.0)
+    assert pace.stepped(0.05) == pytest.approx(0.05)  # on time: waits for the next period
+    # 0.3 s late (3 steps): no wait until the steps fallen behind are taken.
+    assert pace.stepped(0.5) == 0.0
+    assert pace.stepped(0.5) == 0.0
+    assert pace.stepped(0.5) == 0.0
+    assert pace.stepped(0.5) == pytest.approx(0.0)
+    assert pace.stepped(0.5) == pytest.approx(0.1)
+    # More than MAX_LAG_STEPS behind: it starts again from now, one period on.
+    late = 0.6 + (MAX_LAG_STEPS + 2) * 0.1
+    assert pace.stepped(late) == 0.0
+    assert pace.stepped(late) == pytest.approx(0.1)

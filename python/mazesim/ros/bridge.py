@@ -82,6 +82,7 @@ from mazesim.ros.lockstep import (
     RESEND_S,
     CommandDeadline,
     IdleTimeout,
+    RealTimePace,
     TimerHold,
     UnansweredState,
     stamp_nanoseconds,
@@ -105,8 +106,6 @@ __all__ = [
 MODES = ("lockstep", "realtime")
 #: Seconds without a command after which a lockstep bridge says it is waiting for one.
 IDLE_WARNING_S = 5.0
-#: How many control steps a real-time bridge may fall behind before it stops catching up.
-MAX_LAG_STEPS = 5
 #: Where rviz's "2D Nav Goal" sends a goal (``move_base``'s simple goal topic): the bridge only
 #: notes that one came (see :meth:`Bridge.answer_goal`).
 GOAL_TOPIC = "move_base_simple/goal"
@@ -739,8 +738,9 @@ class Bridge:
                     self.tick_idle_clock(), self.step_on_deadline(), self.step_on_skipped_tick()
                 )
             return
-        period = self.simulator.control_step_ms / 1000.0 / self.settings.speed
-        next_step = time.monotonic()
+        pace = RealTimePace(
+            self.simulator.control_step_ms / 1000.0 / self.settings.speed, time.monotonic()
+        )
         while not self.stop.is_set() and not rospy.is_shutdown():
             if self.give_up_when_idle():
                 return
@@ -749,12 +749,7 @@ class Bridge:
                 self.publish_state()
                 if self._finished():
                     break
-            next_step += period
-            delay = next_step - time.monotonic()
-            if delay > 0.0:
-                self.stop.wait(delay)
-            elif delay < -MAX_LAG_STEPS * period:
-                next_step = time.monotonic()
+            self.stop.wait(pace.stepped(time.monotonic()))
 
 
 class _Remembered:

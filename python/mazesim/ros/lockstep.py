@@ -65,7 +65,9 @@ __all__ = [
     "IDLE_EXIT_STATUS",
     "IDLE_TIMEOUT_S",
     "IdleTimeout",
+    "MAX_LAG_STEPS",
     "RESEND_S",
+    "RealTimePace",
     "SKIPPED_TICK_S",
     "TimerHold",
     "UnansweredState",
@@ -347,3 +349,25 @@ class IdleTimeout:
             f"no command came and no node had a command topic open for {self.seconds:g} s; "
             f"giving up ({option} sets how long to wait, 0 for ever)"
         )
+
+
+#: How many control steps a real-time bridge may fall behind before it stops catching up.
+MAX_LAG_STEPS = 5
+
+
+class RealTimePace:
+    """When a real-time ROS 1 bridge (one robot or several) takes its next step: one ``period``
+    of wall-clock time after the last, catching up on steps it fell behind by unless that is more
+    than :data:`MAX_LAG_STEPS`, when it starts again from now."""
+
+    def __init__(self, period: float, now: float) -> None:
+        self.period = period
+        self._next = now
+
+    def stepped(self, now: float) -> float:
+        """Notes a step taken at ``now``; returns the seconds to wait before the next (0: now)."""
+        self._next += self.period
+        delay = self._next - now
+        if delay < -MAX_LAG_STEPS * self.period:
+            self._next = now
+        return max(delay, 0.0)

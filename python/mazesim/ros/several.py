@@ -42,7 +42,7 @@ from mazesim.actions import wheel_speeds
 from mazesim.errors import InvalidArgumentError, _shown
 from mazesim.ros import standard, topics
 from mazesim.ros._ros import publisher
-from mazesim.ros.lockstep import IdleTimeout, UnansweredState, stamp_nanoseconds
+from mazesim.ros.lockstep import IdleTimeout, RealTimePace, UnansweredState, stamp_nanoseconds
 from mazesim.ros.robots import RobotOf, frame_prefix, robot_namespaces, step_rounds
 
 __all__ = ["RobotChannel", "SeveralRobotsBridge", "refuse_single_robot_settings"]
@@ -312,16 +312,12 @@ class SeveralRobotsBridge:
                     return
                 self._resend_unanswered()
             return
-        period = self.simulator.control_step_ms / 1000.0 / self.settings.speed
-        next_step = time.monotonic()
+        pace = RealTimePace(
+            self.simulator.control_step_ms / 1000.0 / self.settings.speed, time.monotonic()
+        )
         while not self.stop.is_set() and not rospy.is_shutdown():
             if self.give_up_when_idle():
                 return
             with self._lock:
                 self._step()
-            next_step += period
-            delay = next_step - time.monotonic()
-            if delay > 0.0:
-                self.stop.wait(delay)
-            else:
-                next_step = time.monotonic()
+            self.stop.wait(pace.stepped(time.monotonic()))
