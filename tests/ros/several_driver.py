@@ -103,6 +103,11 @@ def main() -> int:
     if not standard:
         print(json.dumps(poses))
     else:
+        # Each topic comes on a connection of its own: every state's odom too, before tf2 is
+        # asked at their stamps.
+        while any(len(robot_odoms) <= len(steps) for robot_odoms in odoms):
+            assert time.monotonic() < deadline, "not every odom came"
+            time.sleep(0.02)
         print(json.dumps(_standard(buffer, namespaces, poses, odoms, json.loads(sys.argv[3]))))
     rospy.signal_shutdown("done")
     return 0

@@ -781,11 +781,18 @@ def test_a_late_subscription_gets_the_state_once_in_the_order_it_went_out(
         stderr=subprocess.PIPE,
         text=True,
     )
-    wait_for_subscriber(master, "/pose")
-    seen = run_probe(master, "scan-with-odom", "10")
-    assert seen["answered"] == pytest.approx([1e-9] + [step * 0.032 for step in range(1, 10)])
-    log = Path(master.log_path("bridge")).read_text()
-    assert seen["scans"][: len(seen["answered"])] == seen["answered"], (seen, log)  # each once
+    try:
+        wait_for_subscriber(master, "/pose")
+        seen = run_probe(master, "scan-with-odom", "10")
+        log = Path(master.log_path("bridge")).read_text()
+        assert seen["answered"] == pytest.approx(
+            [1e-9] + [step * 0.032 for step in range(1, 10)]
+        ), (seen, log)
+        assert seen["scans"][: len(seen["answered"])] == seen["answered"], (seen, log)  # each once
+    except BaseException:
+        recorder.kill()  # not left running (and its pipes open) for later tests to find
+        recorder.communicate()
+        raise
     out, err = recorder.communicate(timeout=600)
     assert recorder.returncode == 0, out + err
     poses = json.loads(out.strip().splitlines()[-1])["data"]["pose"]

@@ -7,6 +7,7 @@ import json
 import subprocess
 import sys
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import pytest
@@ -120,6 +121,26 @@ def test_the_single_robot_settings_are_refused_on_several_robots() -> None:
             refuse_single_robot_settings(settings, "three")
 
 
+def _drive(master: LocalMaster, world_file: Path, *arguments: str) -> tuple[Any, dict[str, str]]:
+    """Runs the bridge on ``world_file`` and the driver with ``arguments`` until the driver ends:
+    what the driver printed last (JSON) and the topics' types the master knew then."""
+    bridge = spawn_bridge(master, "--world", str(world_file))
+    driver = subprocess.run(
+        [sys.executable, str(DRIVER), *arguments],
+        env=master.env,
+        capture_output=True,
+        text=True,
+        timeout=300,
+        check=False,
+    )
+    assert driver.returncode == 0, driver.stdout + driver.stderr
+    served = json.loads(driver.stdout.strip().splitlines()[-1])
+    kinds = topic_types(master)
+    bridge.terminate()
+    bridge.wait(timeout=60)
+    return served, kinds
+
+
 @needs_ros
 def test_every_robot_is_served_in_its_namespace_and_runs_as_in_process(
     master: LocalMaster, tmp_path: Path
@@ -132,20 +153,7 @@ def test_every_robot_is_served_in_its_namespace_and_runs_as_in_process(
     steps = _commands()
     commands_file = tmp_path / "commands.json"
     commands_file.write_text(json.dumps(steps))
-    bridge = spawn_bridge(master, "--world", str(world_file))
-    driver = subprocess.run(
-        [sys.executable, str(DRIVER), json.dumps(namespaces), str(commands_file)],
-        env=master.env,
-        capture_output=True,
-        text=True,
-        timeout=300,
-        check=False,
-    )
-    assert driver.returncode == 0, driver.stdout + driver.stderr
-    served = json.loads(driver.stdout.strip().splitlines()[-1])
-    kinds = topic_types(master)
-    bridge.terminate()
-    bridge.wait(timeout=60)
+    served, kinds = _drive(master, world_file, json.dumps(namespaces), str(commands_file))
     for namespace in namespaces:
         assert kinds[f"{namespace}/sensors"] == "std_msgs/Float64MultiArray"
         assert kinds[f"{namespace}/cmd_vel"] == "geometry_msgs/Twist"
@@ -207,26 +215,9 @@ def test_every_robot_publishes_odom_and_tf_in_frames_named_after_its_namespace(
     commands_file.write_text(json.dumps(steps))
     frames = standard.sensor_frames(mazesim.Simulator(world, seed=0).robot_profile(0))
     sensors = [frames[0].frame, frames[-1].frame]
-    bridge = spawn_bridge(master, "--world", str(world_file))
-    driver = subprocess.run(
-        [
-            sys.executable,
-            str(DRIVER),
-            json.dumps(namespaces),
-            str(commands_file),
-            json.dumps(sensors),
-        ],
-        env=master.env,
-        capture_output=True,
-        text=True,
-        timeout=300,
-        check=False,
+    served, kinds = _drive(
+        master, world_file, json.dumps(namespaces), str(commands_file), json.dumps(sensors)
     )
-    assert driver.returncode == 0, driver.stdout + driver.stderr
-    served = json.loads(driver.stdout.strip().splitlines()[-1])
-    kinds = topic_types(master)
-    bridge.terminate()
-    bridge.wait(timeout=60)
     for namespace in namespaces:
         assert kinds[f"{namespace}/odom"] == "nav_msgs/Odometry"
         assert kinds[f"{namespace}/{sensors[0]}"] == "sensor_msgs/Range"
