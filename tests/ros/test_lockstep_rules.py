@@ -227,3 +227,13 @@ def test_a_real_time_bridge_catches_up_a_few_steps_and_starts_again_after_more()
     late = 0.6 + (MAX_LAG_STEPS + 2) * 0.1
     assert pace.stepped(late) == 0.0
     assert pace.stepped(late) == pytest.approx(0.1)
+
+
+def test_a_bridge_counting_its_commands_gives_up_only_after_none_came_and_none_could() -> None:
+    idle = IdleTimeout(10.0, now=0.0)
+    assert not idle.look(9.0, commands=0, connected=False)
+    assert not idle.look(15.0, commands=1, connected=False)  # a command came since: counts anew
+    assert not idle.look(24.0, commands=1, connected=False)
+    assert not idle.look(30.0, commands=1, connected=True)  # a writer connected: counts anew
+    assert not idle.look(39.0, commands=1, connected=False)
+    assert idle.look(40.0, commands=1, connected=False) and idle.expired
