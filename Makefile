@@ -92,17 +92,19 @@ $(DEV_STAMP): $(STAMP)
 	$(BIN)/python -m pip install --progress-bar on $(DEV_PACKAGES) | grep -v '^Requirement already satisfied' || true
 	@$(BIN)/python -c 'import pytest, xdist, hypothesis, mypy, gymnasium, ray, selenium, moviepy' && touch $@
 
-# pytest's --durations: every run's log ends with its 40 slowest tests (set-up, call and tear-down
-# each), so the place the suite's time goes is read from the CI machine itself. PYTEST_WORKERS
-# runs the Python tests in that many processes (pytest-xdist; `auto`: one per core): on 2 cores
-# the suite takes 18-20 min instead of 30 (measured 2026-12-03, 2-core machine), but the ROS
-# tests that time a bridge against its nodes then share the cores with other tests, and one of
-# them failed once that way; so the default is one process (0).
-PYTEST_WORKERS ?= 0
+# pytest's --durations: every run's log ends with its slowest tests (set-up, call and tear-down
+# each), so the place the suite's time goes is read from the CI machine itself. The Python tests
+# run in two parts: first every test not marked `alone`, in PYTEST_WORKERS processes (pytest-xdist;
+# `auto`: one per core), then the tests marked `alone` one at a time (tests/conftest.py marks the
+# ROS 1 and ROS 2 tests so: they time a bridge against its nodes, and one of them failed once when
+# it shared the cores with other tests). On 2 cores the first part in two processes takes about
+# half the time of one (measured 2026-12-03, 2-core machine). PYTEST_WORKERS=0 runs it in one.
+PYTEST_WORKERS ?= auto
 test: build dev-deps ros-deps ros2-deps ros2-peer browser-deps display-deps docs-deps sb3-deps marl-deps oldest-glibc-deps ## run the Rust tests, then the Python tests (ROS 1 and ROS 2 bridges, browser, SB3 and oldest-glibc tests included)
 	cargo test --workspace --exclude mazesim-py
 	cargo test --release --locked --quiet --manifest-path $(ROS2_PEER_MANIFEST) --target-dir $(ROS2_PEER_TARGET)
-	$(BIN)/python -m pytest -n $(PYTEST_WORKERS) --durations=40
+	$(BIN)/python -m pytest -n $(PYTEST_WORKERS) -m "not alone" --durations=40
+	$(BIN)/python -m pytest -m alone --durations=20
 	$(BIN)/python -m mypy.stubtest mazesim._core
 
 # `make fuzz`: the readers' fuzz tests with more mutated inputs, and hostile calls over every module

@@ -11,6 +11,8 @@ import pytest
 
 from mazesim.ros.local_master import LocalMaster
 from recorded_demos import record_demo
+from ros2_support import needs_ros2
+from ros_support import needs_ros
 
 
 @pytest.fixture(autouse=True, scope="session")
@@ -26,6 +28,23 @@ def offline_protos(tmp_path_factory: pytest.TempPathFactory) -> Iterator[None]:
             os.environ.pop(name, None)
         else:
             os.environ[name] = value
+
+
+#: Test folders whose tests time a bridge process against the nodes it talks to: `make test` runs
+#: them one at a time after the rest (the `alone` marker), never beside other tests' processes;
+#: so too every other test that needs ROS 1 or ROS 2 (it starts a bridge too).
+ALONE_FOLDERS = ("ros", "ros2")
+
+
+def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
+    """Mark ``alone`` the tests of ``ALONE_FOLDERS`` and those that need ROS 1 or ROS 2."""
+    tests = Path(__file__).parent
+    ros_marks = (needs_ros.mark, needs_ros2.mark)
+    for item in items:
+        folder = Path(str(item.fspath)).parent
+        in_folder = folder.parent == tests and folder.name in ALONE_FOLDERS
+        if in_folder or any(mark in ros_marks for mark in item.iter_markers("skipif")):
+            item.add_marker(pytest.mark.alone)
 
 
 #: The worlds every installed mazesim carries.

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import shutil
 import subprocess
+import sys
 from pathlib import Path
 
 import pytest
@@ -114,9 +115,30 @@ def test_the_targets_that_use_the_developer_tools_install_them(target: str, tmp_
 
 
 @pytest.mark.skipif(shutil.which("make") is None, reason="needs make")
-def test_make_test_ends_its_log_with_the_slowest_tests(tmp_path: Path) -> None:
+def test_make_test_runs_every_test_once_and_logs_the_slowest(tmp_path: Path) -> None:
     runs = [line for line in _dry_run("test", tmp_path).splitlines() if "-m pytest" in line]
-    assert len(runs) == 1 and "--durations=40" in runs[0].split(), runs
+    # The parallel part leaves out exactly the tests the second part runs one at a time.
+    assert len(runs) == 2, runs
+    assert '-m "not alone"' in runs[0] and "-n" in runs[0].split(), runs
+    assert runs[1].split()[-3:-1] == ["-m", "alone"] and "-n" not in runs[1].split(), runs
+    assert all(any(word.startswith("--durations=") for word in run.split()) for run in runs)
+
+
+def test_the_ros_tests_are_marked_to_run_alone() -> None:
+    from conftest import ALONE_FOLDERS
+
+    tests = Path(__file__).parent
+    marked = subprocess.run(
+        [sys.executable, "-m", "pytest", "--co", "-q", "-m", "alone", "-p", "no:cacheprovider"]
+        + [str(tests / folder) for folder in ALONE_FOLDERS + ("barcode", "replay")],
+        capture_output=True,
+        text=True,
+        cwd=tests.parent,
+    ).stdout.splitlines()
+    folders = {line.split("/")[1] for line in marked if "::" in line}
+    # Every test of the ROS folders, the replay test that needs ROS 1, none of the barcode tests.
+    assert folders == set(ALONE_FOLDERS) | {"replay"}, folders
+    assert not any(line.startswith("tests/replay/") and "ros" not in line for line in marked)
 
 
 @pytest.mark.skipif(shutil.which("make") is None, reason="needs make")
