@@ -18,7 +18,7 @@ PY_BEFORE_311 := "tomli; python_version < '3.11'"
 DEV_PACKAGES := pytest pytest-xdist hypothesis ruff mypy typing_extensions gymnasium ray imageio imageio-ffmpeg \
 	moviepy selenium tensorboardX nbclient nbformat ipykernel
 DEV_STAMP := $(VENV)/.dev-installed
-PY_SOURCES := python tests examples
+PY_SOURCES := python tests examples benches
 # Only `make bench-peers` needs these: the peers mazesim is measured against, and its
 # options (e.g. PEER_ARGS="--envs 64,1024 --json").
 PEER_PACKAGES := pymunk "jax[cpu]"

@@ -37,7 +37,6 @@ import platform
 import statistics
 import sys
 import time
-import warnings
 from dataclasses import dataclass, field
 from typing import Any
 

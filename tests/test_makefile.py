@@ -221,3 +221,17 @@ def test_a_python_asked_for_after_the_venv_was_made_is_told_the_venv_keeps_its_o
     assert f"remove {venv} first (rm -rf {venv}) to make it with {other}" in told.stderr
     same = _make("venv", f"VENV={venv}", f"PYTHON={_fake_python(tmp_path / 'py311', '3.11')}")
     assert same.returncode == 0 and same.stderr == "", same.stderr
+
+
+@pytest.mark.skipif(shutil.which("git") is None, reason="needs git")
+def test_make_lint_reads_every_folder_that_holds_python_files() -> None:
+    tracked = subprocess.run(
+        ["git", "ls-files", "*.py"], capture_output=True, text=True, cwd=ROOT, check=True
+    ).stdout.split()
+    folders = {Path(name).parts[0] for name in tracked if len(Path(name).parts) > 1}
+    sources = next(
+        line.split(":=", 1)[1].split()
+        for line in (ROOT / "Makefile").read_text().splitlines()
+        if line.startswith("PY_SOURCES :=")
+    )
+    assert folders and folders <= set(sources), folders - set(sources)
