@@ -1,7 +1,8 @@
 """The e-puck's devices as Webots' Python ``controller`` module presents them.
 
 Semantics follow Webots: a sensor reads NaN until it is enabled and one sampling period has
-passed, then refreshes every sampling period; a motor starts in position control at 0 and turns
+passed, then refreshes every sampling period (every getter of the reading, those derived from it
+too: see :func:`derived_reading`); a motor starts in position control at 0 and turns
 to velocity control with ``setPosition(float('inf'))``; a velocity beyond ``getMaxVelocity()`` is
 clamped with Webots' warning. Messages printed on stderr are Webots' own.
 """
@@ -107,6 +108,26 @@ def webots_property(getter: str, setter: str | None = None) -> Any:
         lambda self, value: getattr(self, setter)(value),
         doc=f"{doc}; assigning it calls :meth:`{setter}`.",
     )
+
+
+def derived_reading(width: int = 0) -> Callable[[Callable[..., Any]], Callable[..., Any]]:
+    """Marks a sensor's getter that answers from the sensor's reading, or from what was measured
+    with it, rather than from the reading itself (a GPS's speed beside its position, an inertial
+    unit's quaternion beside its angles, a touch sensor's force vector beside its value): until
+    the sensor's first reading it answers NaN, one (``width`` 0) or a list of ``width``, every
+    component of it, as Webots' controller library creates each reading it keeps
+    (``values[i] = NAN`` in src/controller/c: gps.c, touch_sensor.c...)."""
+
+    def wrap(getter: Callable[..., Any]) -> Callable[..., Any]:
+        @functools.wraps(getter)
+        def answer(self: _Sensor, *args: Any, **kwargs: Any) -> Any:
+            if not self._has_reading:
+                return [math.nan] * width if width else math.nan
+            return getter(self, *args, **kwargs)
+
+        return answer
+
+    return wrap
 
 
 Row = tuple[float, float, float]
@@ -395,6 +416,9 @@ class _Sensor(Sampled, Device):
         self._period_steps = 0
         self._enabled_at = 0
         self._value: Any = math.nan
+        #: Whether a reading has been taken (the getters of :func:`derived_reading` answer NaN
+        #: until then).
+        self._has_reading = False
         #: The node's ``resolution``: each value read is rounded to it (-1, Webots' default:
         #: not at all).
         self._resolution = -1.0
@@ -428,6 +452,7 @@ class _Sensor(Sampled, Device):
             and (self._simulation.steps - self._enabled_at) % self._period_steps == 0
         ):
             self._value = self._resolved(self._read())
+            self._has_reading = True
 
     def _resolved(self, value: Any) -> Any:
         """A reading (a number or a list of them) to the sensor's resolution."""

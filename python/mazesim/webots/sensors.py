@@ -23,6 +23,7 @@ from mazesim.webots.devices import (
     _ScalarSensor,
     _Tabled,
     _VectorSensor,
+    derived_reading,
     noise_stream,
     webots_property,
 )
@@ -246,19 +247,18 @@ class GPS(_TableVector):
             return enu_to_nue(x, y, self._mount.z)
         return x, y, self._mount.z
 
+    @derived_reading()
     def getSpeed(self) -> float:
         """The speed (m/s) over the last step; NaN before the first sampling period."""
-        if all(math.isnan(v) for v in self._value):
-            return math.nan
         vx, vy, _ = self._simulation.velocity
         return math.hypot(vx, vy)
 
     speed = webots_property("getSpeed")
 
+    @derived_reading(3)
     def getSpeedVector(self) -> list[float]:
-        """The velocity (m/s) in the world frame over the last step."""
-        if all(math.isnan(v) for v in self._value):
-            return [math.nan] * 3
+        """The velocity (m/s) in the world frame over the last step; NaNs before the first
+        sampling period."""
         vx, vy, _ = self._simulation.velocity
         return list(enu_to_nue(vx, vy, 0.0)) if self._simulation.scene.nue else [vx, vy, 0.0]
 
@@ -349,9 +349,10 @@ class InertialUnit(_TableVector):
 
     roll_pitch_yaw = webots_property("getRollPitchYaw")
 
+    @derived_reading(4)
     def getQuaternion(self) -> list[float]:
         """The orientation as a quaternion [x, y, z, w] (of the rotation Rz(yaw) Ry(pitch)
-        Rx(roll))."""
+        Rx(roll)); NaNs before the first sampling period."""
         roll, pitch, yaw = self.getRollPitchYaw()
         if self._simulation.scene.y_up_devices:  # Ry(yaw) Rz(pitch) Rx(roll)
             turns = ((1, yaw), (2, pitch), (0, roll))
@@ -498,8 +499,10 @@ class TouchSensor(_ScalarSensor):
                 found.append(Footprint(x, y, yaw, (width, depth), 0.0))
         return found
 
+    @derived_reading(3)
     def getValues(self) -> list[float]:
-        """A force-3d sensor's reading: zeros (a bumper has no force vector)."""
+        """A force-3d sensor's reading: zeros (a bumper has no force vector); NaNs before the
+        first sampling period."""
         return [0.0, 0.0, 0.0]
 
     def getType(self) -> int:
