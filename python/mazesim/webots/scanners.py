@@ -63,7 +63,8 @@ class _Rays:
 class RayLidar(Lidar):
     """A ``Lidar`` node's points: ``horizontalResolution`` rays a layer over ``fieldOfView``,
     ``numberOfLayers`` layers over ``verticalFieldOfView`` (Webots' defaults 512, 1.5708, 4,
-    0.2), ranges within ``minRange`` and ``maxRange`` (0.01, 1)."""
+    0.2), ranges within ``minRange`` and ``maxRange`` (0.01, 1); its head's frequencies are the
+    node's ``defaultFrequency``, ``minFrequency`` and ``maxFrequency`` (10, 1, 25 Hz)."""
 
     def __init__(
         self, name: str, simulation: RobotSimulation, mount: DeviceMount, fields: Mapping[str, Any]
@@ -78,6 +79,10 @@ class RayLidar(Lidar):
         self._min_range = _number(fields, "minRange", 0.01)
         self._max_range = _number(fields, "maxRange", 1.0)
         self._frequency = _number(fields, "defaultFrequency", 10.0)
+        self._frequencies = (
+            _number(fields, "minFrequency", 1.0),
+            _number(fields, "maxFrequency", 25.0),
+        )
         self._value = None
 
     def _elevations(self) -> list[float]:
@@ -141,6 +146,14 @@ class RayLidar(Lidar):
     def getFrequency(self) -> float:
         """The node's ``defaultFrequency`` (Hz)."""
         return self._frequency
+
+    def getMinFrequency(self) -> float:
+        """The node's ``minFrequency`` (Hz)."""
+        return self._frequencies[0]
+
+    def getMaxFrequency(self) -> float:
+        """The node's ``maxFrequency`` (Hz)."""
+        return self._frequencies[1]
 
 
 class RayRangeFinder(RangeFinder):

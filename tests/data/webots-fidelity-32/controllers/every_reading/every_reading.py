@@ -1,6 +1,7 @@
 """Enables every device the robot has and, before the first step, calls each getter that takes
-no argument; writes, for each getter that answered a list of numbers, which of them are NaN, as
-JSON into $SWARM_LOG (and the getters that raised, by name)."""
+no argument; writes, for each getter that answered a list of numbers, which of them are NaN, and
+the getters that answered one number, NaN, as JSON into $SWARM_LOG (and the getters that
+raised, by name)."""
 
 import contextlib
 import inspect
@@ -19,6 +20,7 @@ for device in devices:
     if isinstance(device, Sensor):
         device.enable(time_step)
 lists = {}
+nan_numbers = []
 raised = {}
 with contextlib.redirect_stderr(io.StringIO()):
     for device in devices:
@@ -36,5 +38,10 @@ with contextlib.redirect_stderr(io.StringIO()):
                 continue
             if isinstance(value, list) and value and all(isinstance(v, float) for v in value):
                 lists[f"{device.getName()}.{name}"] = [math.isnan(v) for v in value]
+            elif isinstance(value, float) and math.isnan(value):
+                nan_numbers.append(f"{device.getName()}.{name}")
+lidar = robot.getDevice("lidar")
+log = {"lists": lists, "nan_numbers": nan_numbers, "raised": raised}
+log["lidar_frequencies"] = [lidar.getMinFrequency(), lidar.getMaxFrequency()]
 with open(os.path.join(os.environ.get("SWARM_LOG", "."), f"{robot.getName()}.json"), "w") as out:
-    json.dump({"lists": lists, "raised": raised}, out)
+    json.dump(log, out)
