@@ -16,12 +16,17 @@ from ros_support import needs_ros
 
 
 @pytest.fixture(autouse=True, scope="session")
-def offline_protos(tmp_path_factory: pytest.TempPathFactory) -> Iterator[None]:
-    """Webots worlds' PROTO URLs are never downloaded by the tests (only tests that serve them
-    from 127.0.0.1 allow it), and no user's download cache is read."""
-    saved = {name: os.environ.get(name) for name in ("MAZESIM_OFFLINE", "MAZESIM_PROTO_CACHE")}
+def sandboxed_environment(tmp_path_factory: pytest.TempPathFactory) -> Iterator[None]:
+    """What the tests write or fetch stays inside pytest's own temporary folder, for them and
+    the processes they start: Webots worlds' PROTO URLs are never downloaded (only tests that
+    serve them from 127.0.0.1 allow it) and no user's download cache is read; and
+    Stable-Baselines3, which makes a new ``SB3-<date>`` log folder in the system's temporary
+    directory at every ``learn`` unless ``SB3_LOGDIR`` names one, logs into one made here."""
+    names = ("MAZESIM_OFFLINE", "MAZESIM_PROTO_CACHE", "SB3_LOGDIR")
+    saved = {name: os.environ.get(name) for name in names}
     os.environ["MAZESIM_OFFLINE"] = "1"
     os.environ["MAZESIM_PROTO_CACHE"] = str(tmp_path_factory.mktemp("proto-cache"))
+    os.environ["SB3_LOGDIR"] = str(tmp_path_factory.mktemp("sb3-logs"))
     yield
     for name, value in saved.items():
         if value is None:
