@@ -95,15 +95,17 @@ $(DEV_STAMP): $(STAMP)
 # pytest's --durations: every run's log ends with its slowest tests (set-up, call and tear-down
 # each), so the place the suite's time goes is read from the CI machine itself. The Python tests
 # run in two parts: first every test not marked `alone`, in PYTEST_WORKERS processes (pytest-xdist;
-# `auto`: one per core), then the tests marked `alone` one at a time (tests/conftest.py marks the
+# `auto`: one per core; each test file wholly in one process, as the code blocks of a docs page
+# build on each other), then the tests marked `alone` one at a time (tests/conftest.py marks the
 # ROS 1 and ROS 2 tests so: they time a bridge against its nodes, and one of them failed once when
-# it shared the cores with other tests). On 2 cores the first part in two processes takes about
-# half the time of one (measured 2026-12-03, 2-core machine). PYTEST_WORKERS=0 runs it in one.
+# it shared the cores with other tests). On 2 cores shared with other work, the first part took
+# 22 min in two processes and the second 7 min (measured 2026-12-03, 2-core machine; the whole
+# suite in one process took 26-31 min on a quiet machine). PYTEST_WORKERS=0 runs it in one.
 PYTEST_WORKERS ?= auto
 test: build dev-deps ros-deps ros2-deps ros2-peer browser-deps display-deps docs-deps sb3-deps marl-deps oldest-glibc-deps ## run the Rust tests, then the Python tests (ROS 1 and ROS 2 bridges, browser, SB3 and oldest-glibc tests included)
 	cargo test --workspace --exclude mazesim-py
 	cargo test --release --locked --quiet --manifest-path $(ROS2_PEER_MANIFEST) --target-dir $(ROS2_PEER_TARGET)
-	$(BIN)/python -m pytest -n $(PYTEST_WORKERS) -m "not alone" --durations=40
+	$(BIN)/python -m pytest -n $(PYTEST_WORKERS) --dist loadfile -m "not alone" --durations=40
 	$(BIN)/python -m pytest -m alone --durations=20
 	$(BIN)/python -m mypy.stubtest mazesim._core
 

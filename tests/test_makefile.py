@@ -120,6 +120,8 @@ def test_make_test_runs_every_test_once_and_logs_the_slowest(tmp_path: Path) -> 
     # The parallel part leaves out exactly the tests the second part runs one at a time.
     assert len(runs) == 2, runs
     assert '-m "not alone"' in runs[0] and "-n" in runs[0].split(), runs
+    # One test file in one process: the code blocks of a docs page build on each other.
+    assert "--dist loadfile" in runs[0], runs
     assert runs[1].split()[-3:-1] == ["-m", "alone"] and "-n" not in runs[1].split(), runs
     assert all(any(word.startswith("--durations=") for word in run.split()) for run in runs)
 
