@@ -113,3 +113,26 @@ def test_an_option_without_dashes_taken_as_an_argument_is_told_the_option(
     (tmp_path / "out").write_text("not a world\n", encoding="utf-8")
     assert main(argv) == 2
     assert "did you mean the option" not in capsys.readouterr().err
+
+
+_WORLD = mazesim.load_world("arena")
+
+
+@pytest.mark.parametrize(
+    "call",
+    [
+        lambda given: mazesim.Simulator(given),
+        lambda given: mazesim.Simulator(_WORLD).change_world(given),
+        lambda given: mazesim.BatchSimulator(given, 2),
+        lambda given: mazesim.BatchSimulator([_WORLD, given]),
+        lambda given: mazesim.BatchSimulator(_WORLD, 2).set_world(0, given, 1),
+    ],
+    ids=["Simulator", "change_world", "BatchSimulator", "BatchSimulator list", "set_world"],
+)
+@pytest.mark.parametrize("given", ["seed-maze", Path("mazes/mine.toml")], ids=["name", "path"])
+def test_a_world_name_or_path_where_a_world_goes_is_told_load_world(call, given) -> None:
+    with pytest.raises(mazesim.WrongTypeError) as refused:
+        call(given)
+    message = str(refused.value)
+    assert f"mazesim.load_world({given!r})" in message, message
+    assert "expected" in message and "found a" in message, message

@@ -18,7 +18,7 @@ use crate::lock::Exclusive;
 use crate::profile::RobotArg;
 use crate::run::{self, RunCall, Traces};
 use crate::subtasks::SubTaskArrays;
-use crate::world::{world_argument, PyWorld};
+use crate::world::{not_a_world, world_argument, world_items, PyWorld};
 
 /// N independent environments stepped together.
 #[pyclass(name = "BatchSimulator", module = "mazesim._core", frozen)]
@@ -288,13 +288,13 @@ impl PyBatch {
                 vec![world.clone(); n]
             } else {
                 let list: Vec<Bound<'_, PyWorld>> =
-                    bounded_items(worlds, "worlds", "mazesim.World (or one World)", MAX_ENVS)?
+                    world_items(worlds, "mazesim.World (or one World)", MAX_ENVS)?
                         .into_iter()
-                        .map(|w| w.cast_into::<PyWorld>())
-                        .collect::<Result<_, _>>()
-                        .map_err(|_| {
-                            invalid("expected worlds to be a World or a sequence of World".into())
-                        })?;
+                        .map(|w| match w.cast::<PyWorld>() {
+                            Ok(world) => Ok(world.clone()),
+                            Err(_) => Err(not_a_world(&w, "each of worlds", "a mazesim.World")),
+                        })
+                        .collect::<PyResult<_>>()?;
                 if let Some(n) = num_envs {
                     if n != list.len() {
                         return Err(invalid(format!(

@@ -214,7 +214,7 @@ impl<'py> RoundArrays<'py> {
         let q = &round.required("q")?;
         let visits = &round.required("visits")?;
         let allowed = &round.required("allowed")?;
-        let worlds = bounded_items(worlds, "worlds", "mazesim.World", MAX_ENVS)?
+        let worlds = crate::world::world_items(worlds, "mazesim.World", MAX_ENVS)?
             .iter()
             .map(|w| world_argument(w, "each of worlds"))
             .collect::<PyResult<Vec<_>>>()?;

@@ -10,7 +10,7 @@ use mazesim_core::navigator::NUM_ACTIONS;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::args::{bounded_items, dict_argument, shape_of, typed_argument, unknown_key};
+use crate::args::{dict_argument, shape_of, typed_argument, unknown_key};
 use crate::args::{warn_deprecated, Keywords};
 use crate::buffers::{copied, shape_refusal};
 use crate::errors::invalid;
@@ -58,7 +58,7 @@ impl PyLowerRoundSettings {
         enter(|| {
             dict_argument(learning, "learning", " of name -> number or name")?;
             let numbers = round_settings(learning)?;
-            let given = bounded_items(worlds, "worlds", "mazesim.World", MAX_ENVS)?;
+            let given = crate::world::world_items(worlds, "mazesim.World", MAX_ENVS)?;
             for world in &given {
                 world_argument(world, "each of worlds")?;
             }

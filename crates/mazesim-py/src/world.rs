@@ -415,11 +415,49 @@ impl PyWorld {
 pub fn world_argument(world: &Bound<'_, PyAny>, name: &str) -> PyResult<Arc<World>> {
     match world.cast::<PyWorld>() {
         Ok(w) => Ok(w.get().inner.clone()),
-        Err(_) => {
-            let kind = crate::args::type_name(world);
-            Err(crate::errors::wrong_type(format!(
-                "expected {name} to be a mazesim.World, found {kind}"
-            )))
-        }
+        Err(_) => Err(not_a_world(world, name, "a mazesim.World")),
     }
+}
+
+/// The items of a `worlds` argument (a sequence of at most `most` worlds, as `bounded_items`
+/// takes it); a world's name or path given instead is told how to load it.
+pub fn world_items<'py>(
+    worlds: &Bound<'py, PyAny>,
+    expected: &str,
+    most: usize,
+) -> PyResult<Vec<Bound<'py, PyAny>>> {
+    if load_hint(worlds).is_some() {
+        return Err(not_a_world(
+            worlds,
+            "worlds",
+            &format!("a sequence of {expected}"),
+        ));
+    }
+    crate::args::bounded_items(worlds, "worlds", expected, most)
+}
+
+/// The wrong-type error for an argument that is not a World: when it is text or a path (a
+/// world's name or file, the usual mix-up), the message says how to load that world.
+pub fn not_a_world(given: &Bound<'_, PyAny>, name: &str, expected: &str) -> PyErr {
+    let kind = crate::args::type_name(given);
+    let hint = load_hint(given).unwrap_or_default();
+    crate::errors::wrong_type(format!(
+        "expected {name} to be {expected}, found {kind}{hint}"
+    ))
+}
+
+/// "; load it with mazesim.load_world(...)" for a str or path-like argument, else None.
+fn load_hint(given: &Bound<'_, PyAny>) -> Option<String> {
+    let path_like = given.hasattr("__fspath__").unwrap_or(false);
+    if !given.is_instance_of::<pyo3::types::PyString>() && !path_like {
+        return None;
+    }
+    let shown = given
+        .repr()
+        .map(|r| r.to_string_lossy().into_owned())
+        .unwrap_or_else(|_| "NAME_OR_PATH".into());
+    Some(format!(
+        "; a World is made from a built-in name or a world file by \
+         mazesim.load_world({shown})"
+    ))
 }
