@@ -36,6 +36,11 @@ environment) and read its standard output.
                                        of scan and of odom, in that order; answers each scan with a
                                        twist once an odom has come, N times; the stamps of every
                                        scan received and of those answered
+    ros_probe.py publisher-after N SECONDS
+                                       subscribe odom, make the cmd_vel publisher SECONDS later (a
+                                       node loading something between the two), answer each odom
+                                       with a twist once it exists, N times; the stamps of every
+                                       odom received and of those answered
     ros_probe.py map                   rospy.wait_for_message on map (a planner waiting for
                                        map_server's map): its frame, size, origin and occupied cells
     ros_probe.py listen SECONDS        record what the bridge publishes for SECONDS (wall clock)
@@ -430,6 +435,33 @@ def scan_with_odom(count: int) -> dict[str, Any]:
     return {"scans": scans, "answered": answered}
 
 
+def publisher_after(count: int, delay_s: float) -> dict[str, Any]:
+    """Subscribes ``odom``, makes its ``cmd_vel`` publisher ``delay_s`` later and answers each
+    odometry with a twist once it has one, ``count`` times; returns the stamps of every odometry
+    received and of those answered."""
+    seen = threading.Condition()
+    made: list[Any] = []
+    odometry: list[float] = []
+    answered: list[float] = []
+
+    def on_odom(message: Odometry) -> None:
+        with seen:
+            odometry.append(message.header.stamp.to_sec())
+            if made and len(answered) < count:
+                made[0].publish(Twist())
+                answered.append(message.header.stamp.to_sec())
+            seen.notify_all()
+
+    rospy.Subscriber("odom", Odometry, on_odom, tcp_nodelay=True)
+    time.sleep(delay_s)
+    cmd_vel = publisher("cmd_vel", Twist)
+    with seen:
+        made.append(cmd_vel)
+        if not seen.wait_for(lambda: len(answered) >= count, TIMEOUT_S):
+            raise SystemExit(f"answered {len(answered)} of {count}")
+    return {"odometry": odometry, "answered": answered}
+
+
 def main() -> int:
     mode = sys.argv[1]
     rospy.init_node("ros_probe", anonymous=True, disable_signals=True)
@@ -467,6 +499,8 @@ def main() -> int:
             }
         elif mode == "scan-with-odom":
             result = scan_with_odom(int(sys.argv[2]))
+        elif mode == "publisher-after":
+            result = publisher_after(int(sys.argv[2]), float(sys.argv[3]))
         elif mode == "listen":
             recorder = Recorder(STATE_TOPICS)
             time.sleep(float(sys.argv[2]))

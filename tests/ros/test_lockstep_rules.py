@@ -237,3 +237,38 @@ def test_a_bridge_counting_its_commands_gives_up_only_after_none_came_and_none_c
     assert not idle.look(30.0, commands=1, connected=True)  # a writer connected: counts anew
     assert not idle.look(39.0, commands=1, connected=False)
     assert idle.look(40.0, commands=1, connected=False) and idle.expired
+
+
+def test_late_connections_wait_for_a_command_writer_then_get_the_state_motion_first() -> None:
+    from mazesim.ros.latched import LateConnections
+
+    late = LateConnections(quiet_s=0.5, lead_s=0.25, writer_wait_s=2.0)
+    sent: list[tuple[str, str]] = []
+    for topic in ("scan", "odom"):
+        late.peer_subscribe(topic, None, lambda message, topic=topic: sent.append((topic, message)))
+    state = [("odom", "odom@0"), ("scan", "scan@0")]
+    connected = late._last_connected
+    # Quiet, but no command writer yet: a node answering at once would lose its command.
+    assert late.hand_over(state, {"scan"}, writer_connected=False, now=connected + 1.0) == 0
+    assert sent == []
+    # Its publisher connected: the motion now, the readings a lead later.
+    assert late.hand_over(state, {"scan"}, writer_connected=True, now=connected + 1.1) == 2
+    assert sent == [("odom", "odom@0")]
+    late.hand_over(state, {"scan"}, writer_connected=True, now=connected + 1.2)
+    assert sent == [("odom", "odom@0")]
+    late.hand_over(state, {"scan"}, writer_connected=True, now=connected + 1.4)
+    assert sent == [("odom", "odom@0"), ("scan", "scan@0")]
+    late.hand_over(state, {"scan"}, writer_connected=True, now=connected + 9.0)
+    assert len(sent) == 2  # once
+
+
+def test_late_connections_with_no_command_writer_get_the_state_after_the_writer_wait() -> None:
+    from mazesim.ros.latched import LateConnections
+
+    late = LateConnections(quiet_s=0.5, lead_s=0.25, writer_wait_s=2.0)
+    sent: list[str] = []
+    late.peer_subscribe("pose", None, sent.append)  # rostopic echo /pose, alone
+    connected = late._last_connected
+    assert late.hand_over([("pose", "pose@0")], set(), False, now=connected + 1.9) == 0
+    assert late.hand_over([("pose", "pose@0")], set(), False, now=connected + 2.0) == 1
+    assert sent == ["pose@0"]

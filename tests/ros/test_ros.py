@@ -767,6 +767,25 @@ def test_a_goal_follower_gets_the_state_again_once_its_goal_came(master: LocalMa
 
 
 @needs_ros
+def test_a_node_making_its_publisher_after_its_subscription_gets_the_state_once_it_has_one(
+    master: LocalMaster,
+) -> None:
+    # A node subscribing odom, loading something for a second, then making its cmd_vel publisher
+    # got the latched state before it had one, skipped it, and waited 5 s for the state sent
+    # again; a node answering at once lost its first command when the bridge had not connected
+    # to its publisher yet. The state waits for a command writer to connect.
+    spawn_bridge(master, "--seed", "1", "--duration", str(6 * 0.032))
+    seen = run_probe(master, "publisher-after", "6", "1.0")
+    log = Path(master.log_path("bridge")).read_text()
+    assert seen["answered"] == pytest.approx([1e-9] + [step * 0.032 for step in range(1, 6)]), (
+        seen,
+        log,
+    )
+    assert seen["odometry"][: len(seen["answered"])] == seen["answered"], (seen, log)
+    assert "publishing the reset state again" not in log
+
+
+@needs_ros
 def test_a_late_subscription_gets_the_state_once_in_the_order_it_went_out(
     master: LocalMaster,
 ) -> None:

@@ -244,6 +244,9 @@ def test_a_controllers_own_oserror_is_its_traceback(tmp_path: Path) -> None:
         ("raise KeyboardInterrupt\n", 130),
         ("import sys\nsys.exit()\n", 0),
         ("while True\n    pass\n", 1),
+        # Deeper than Python's parser goes: the controller fails to compile, as under Webots;
+        # the import scan before the run once let the RecursionError out as an internal error.
+        ("x = " + "+".join(["1"] * 100_000) + "\n", 1),
     ],
 )
 def test_exit_statuses_and_files_whatever_the_ending(
@@ -262,6 +265,9 @@ def test_exit_statuses_and_files_whatever_the_ending(
         assert summary["steps"] == 0, "a controller that does not compile does not run"
         assert f'File "{script}", line 5' in result.stderr and "SyntaxError" in result.stderr
         assert "Traceback" not in result.stderr
+    elif "+1+1" in ending:
+        assert summary["steps"] == 0, "a controller that does not compile does not run"
+        assert "RecursionError" in result.stderr and "internal error" not in result.stderr
     else:
         assert summary["steps"] == 5
     if "giving up" in ending:

@@ -12,7 +12,8 @@ A ``cmd_vel`` twist is a command like the others. It runs in one of two modes:
   answers each ``sensors`` (or ``sensor_data``) message with one command, so no reading is ever
   missed or stale whatever the load, and a run is as deterministic as the in-process simulator.
   The state topics are latched: a controller that connects late still receives the state waiting
-  for its command, once, in the order it went out (:mod:`mazesim.ros.latched`). While a
+  for its command, once, in the order it went out, once its command publisher is connected too
+  (:mod:`mazesim.ros.latched`). While a
   publisher of one of the command topics is connected and no command has come ``RESEND_S``
   seconds after a state went out, the bridge publishes that state again
   (:class:`~mazesim.ros.lockstep.UnansweredState`, shared with the ROS 2 bridge): before the
@@ -729,7 +730,8 @@ class Bridge:
                     started = math.inf
                 with self._lock:
                     state = [(made.resolved_name, sent) for made, sent in self.last_state]
-                    self.late.hand_over(state, self.sensing)
+                    writer = any(sub.get_num_connections() for sub in self.command_subscribers)
+                    self.late.hand_over(state, self.sensing, writer)
                 if self.give_up_when_idle():
                     return
                 self._resend_unanswered()

@@ -15,9 +15,16 @@ together, in two parts as the ROS 2 bridge sends its first state: the motion (``
 :data:`LEAD_S` later. rospy takes each connection's messages on a thread of its own, so messages
 sent one after the other on two connections may be served in either order; a quarter of a
 second apart, the node above has its odometry before the scan. A connection that receives a
-newer message on its topic meanwhile (a step) is not sent the old one. The publishers still say
-they are latching (the ``latching`` connection header), so ``rosbag`` records them as latched
-topics.
+newer message on its topic meanwhile (a step) is not sent the old one.
+
+A node that publishes its first command as soon as the state comes lost it when the bridge had
+not connected to its command publisher yet (rospy drops a message to a subscriber not yet
+connected), and waited 5 s for the state sent again: the bridge connects to a new publisher
+only after the master tells it of one, which under load took longer than :data:`QUIET_S`. So
+the connections waiting get the state once a command writer is connected to the bridge too, or
+:data:`WRITER_WAIT_S` after the last connection when none comes (a recorder or ``rostopic echo``
+alone). The publishers still say they are latching (the ``latching`` connection header), so
+``rosbag`` records them as latched topics.
 """
 
 from __future__ import annotations
@@ -27,10 +34,12 @@ import time
 from collections.abc import Callable, Container, Iterable
 from typing import Any
 
-__all__ = ["LEAD_S", "QUIET_S", "LateConnections"]
+__all__ = ["LEAD_S", "QUIET_S", "WRITER_WAIT_S", "LateConnections"]
 
 #: Seconds without a new connection before the connections waiting get the state.
 QUIET_S = 0.5
+#: Seconds after the last connection the state waits for a command writer to connect.
+WRITER_WAIT_S = 2.0
 #: Seconds between the state's motion and its sensors' readings, handed to late connections.
 LEAD_S = 0.25
 
@@ -43,9 +52,12 @@ class LateConnections:
     connection only.
     """
 
-    def __init__(self, quiet_s: float = QUIET_S, lead_s: float = LEAD_S) -> None:
+    def __init__(
+        self, quiet_s: float = QUIET_S, lead_s: float = LEAD_S, writer_wait_s: float = WRITER_WAIT_S
+    ) -> None:
         self.quiet_s = quiet_s
         self.lead_s = lead_s
+        self.writer_wait_s = writer_wait_s
         self._lock = threading.Lock()
         #: The topic and the send function of each connection waiting, in connection order.
         self._waiting: list[tuple[str, Callable[[Any], None]]] = []
@@ -74,19 +86,26 @@ class LateConnections:
             self._sensing = [entry for entry in self._sensing if entry[0] != topic]
 
     def hand_over(
-        self, state: Iterable[tuple[str, Any]], sensing: Container[str], now: float | None = None
+        self,
+        state: Iterable[tuple[str, Any]],
+        sensing: Container[str],
+        writer_connected: bool = True,
+        now: float | None = None,
     ) -> int:
         """Sends ``state`` (each message's topic and the message, in the order they went out) to
-        the connections waiting, once :data:`QUIET_S` has passed since the last one connected:
-        the motion first, the topics of ``sensing`` (the sensors' readings) :data:`LEAD_S`
-        after the last motion handed over, so that a node's odometry callback has run before
-        its scan callback (each connection's messages are taken on a thread of its own).
+        the connections waiting, once :data:`QUIET_S` has passed since the last one connected
+        and a command writer is connected (``writer_connected``), or :data:`WRITER_WAIT_S` has
+        passed without one: the motion first, the topics of ``sensing`` (the sensors'
+        readings) :data:`LEAD_S` after the last motion handed over, so that a node's odometry
+        callback has run before its scan callback (each connection's messages are taken on a
+        thread of its own).
         Returns how many connections it sent to."""
         now = time.monotonic() if now is None else now
         state = list(state)
         with self._lock:
             waiting: list[tuple[str, Callable[[Any], None]]] = []
-            if self._waiting and now - self._last_connected >= self.quiet_s:
+            wait_s = self.quiet_s if writer_connected else self.writer_wait_s
+            if self._waiting and now - self._last_connected >= wait_s:
                 waiting, self._waiting = self._waiting, []
                 # Every reading waiting goes LEAD_S after the last motion handed over.
                 self._sensing += [entry for entry in waiting if entry[0] in sensing]

@@ -199,14 +199,22 @@ def _guarded(tree: ast.AST) -> set[int]:
     return guarded
 
 
+def _syntax_tree(path: str) -> ast.Module | None:
+    """The syntax tree of a Python controller file, or None when it cannot be read or parsed:
+    a syntax error, or statements nested or chained deeper than Python's parser goes (a
+    ``RecursionError``, as the controller would meet when run); the run then says why."""
+    try:
+        return ast.parse(read_input(path, MAX_TEXT_CHARACTERS, "the controller"))
+    except (SyntaxError, ValueError, OSError, RecursionError, MemoryError):
+        return None
+
+
 def _imports(path: str) -> list[tuple[str, str]]:
     """The modules a file imports outside ``try``, and inside ``try`` when it needs them all
     the same (:mod:`mazesim.webots.needed_imports`): (the folder the name starts from, the
     dotted name); ``from a import b`` gives ``a.b`` (``b`` may be a submodule)."""
-    try:
-        source = read_input(path, MAX_TEXT_CHARACTERS, "the controller")
-        tree = ast.parse(source)
-    except (SyntaxError, ValueError, OSError):
+    tree = _syntax_tree(path)
+    if tree is None:
         return []
     guarded = _guarded(tree) - {id(node) for node in needed_guarded_imports(tree)}
     here = os.path.dirname(path)
@@ -273,9 +281,8 @@ def path_additions(path: str) -> list[str]:
     file's own ``__file__`` (``Path(__file__).resolve().parent.parent``,
     ``os.path.dirname(os.path.abspath(__file__))``), directly or through names the file's
     top-level statements give them (:func:`_path_of`)."""
-    try:
-        tree = ast.parse(read_input(path, MAX_TEXT_CHARACTERS, "the controller"))
-    except (SyntaxError, ValueError, OSError):
+    tree = _syntax_tree(path)
+    if tree is None:
         return []
     here = os.path.dirname(os.path.abspath(path))
     names = _module_names(tree, _path_of, {"__file__": os.path.abspath(path)})
@@ -518,9 +525,8 @@ def turn_in_place_speed(path: str) -> float | None:
     """The fastest turn in place a Python controller file commands: a wheel speed ``v`` that
     two ``setVelocity`` statements of one block set as ``-v`` and ``v``, as its module-level
     constants give them (rad/s); None when it commands none."""
-    try:
-        tree = ast.parse(read_input(path, MAX_TEXT_CHARACTERS, "the controller"))
-    except (SyntaxError, ValueError, OSError):
+    tree = _syntax_tree(path)
+    if tree is None:
         return None
     known = _module_names(tree, _constant, {})
     fastest: float | None = None
