@@ -43,6 +43,7 @@ __all__ = [
     "read_input",
     "read_text",
     "refuse_overwriting_inputs",
+    "refuse_replacing_world_file",
     "same_file",
     "shell_command",
     "unknown_name_or_file",
@@ -436,6 +437,23 @@ def refuse_overwriting_inputs(
                 f"{_shown(os.fspath(path))}{why} choose another {out_label}"
             )
         written.append((out_label, out_path))
+
+
+def refuse_replacing_world_file(file: str | os.PathLike[str], force: bool) -> None:
+    """Raises when a command would replace a world file that exists and ``force`` (``--force``)
+    is False. The one rule of every command that writes a world file (``worlds --export``,
+    ``import-wbt --out``): a world file is one its user edits, so an existing one is kept unless
+    asked; what a command makes again from its inputs (pictures, replays, videos, the files of a
+    run folder) is replaced. A device or a pipe (``/dev/stdout``) holds nothing to lose.
+
+    Raises:
+        MazesimIOError: ``file`` is an existing file (or a link to one) and ``force`` is False.
+    """
+    if not force and os.path.isfile(file):
+        raise MazesimIOError(
+            f"{os.fspath(file)} exists: name another file, or add --force to overwrite it (a "
+            "world file is one you edit: mazesim never replaces one unasked)"
+        )
 
 
 def file_name_of(name: str, suffix: str) -> str:

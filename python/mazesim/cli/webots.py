@@ -16,6 +16,7 @@ from mazesim._paths import (
     output_files,
     output_path,
     refuse_overwriting_inputs,
+    refuse_replacing_world_file,
 )
 from mazesim.cli._args import add_out_folder, add_seed_option, positive_seconds
 from mazesim.cli._help import examples
@@ -59,7 +60,11 @@ def register(commands: Any) -> None:
         "--out",
         type=output_path,
         metavar="WORLD_FILE",
-        help="also write the imported world as a mazesim world file (.toml)",
+        help="also write the imported world as a mazesim world file (.toml; refused if it "
+        "exists, unless --force)",
+    )
+    importer.add_argument(
+        "--force", action="store_true", help="with --out: overwrite WORLD_FILE if it exists"
     )
     importer.add_argument(
         "--json",
@@ -176,6 +181,9 @@ def run_import(args: argparse.Namespace, out: TextIO) -> int:
 
     if args.out:
         refuse_overwriting_inputs([("--out", args.out)], [("the Webots world", args.file)])
+        refuse_replacing_world_file(args.out, args.force)
+    elif args.force:
+        raise InvalidArgumentError("expected --force with --out WORLD_FILE, found it alone")
     world, report = import_wbt(args.file)
     if args.out:
         world.save(args.out)

@@ -8,7 +8,7 @@ import os
 import sys
 from typing import Any, TextIO
 
-from mazesim._paths import output_file, shell_command
+from mazesim._paths import output_file, refuse_replacing_world_file, shell_command
 from mazesim.cli._help import examples
 from mazesim.errors import InvalidArgumentError, MazesimIOError, _shown
 
@@ -35,12 +35,12 @@ def register(commands: Any) -> None:
     worlds.add_argument(
         "-o",
         "--out",
-        metavar="FILE",
+        metavar="WORLD_FILE",
         help="with --export: the world file to write (default: NAME.toml in the current "
         "folder; refused if it exists, unless --force)",
     )
     worlds.add_argument(
-        "--force", action="store_true", help="with --export: overwrite FILE if it exists"
+        "--force", action="store_true", help="with --export: overwrite WORLD_FILE if it exists"
     )
     worlds.set_defaults(run=_run)
 
@@ -75,7 +75,8 @@ def export_world(name: str, file: str, *, force: bool = False) -> None:
         UnknownNameError: ``name`` is not a built-in world (the message lists them).
         InvalidArgumentError: ``file`` does not end in ``.toml`` (refused by
             :meth:`mazesim.World.save`, as any world saved under such a name).
-        MazesimIOError: ``file`` exists and ``force`` is False, or it cannot be written.
+        MazesimIOError: ``file`` is an existing file and ``force`` is False
+            (:func:`~mazesim._paths.refuse_replacing_world_file`), or it cannot be written.
     """
     import mazesim
 
@@ -90,8 +91,7 @@ def export_world(name: str, file: str, *, force: bool = False) -> None:
         output_file(file)
     except argparse.ArgumentTypeError as refused:
         raise MazesimIOError(str(refused)) from None
-    if os.path.lexists(file) and not force:
-        raise MazesimIOError(f"{file} exists: name another file, or add --force to overwrite it")
+    refuse_replacing_world_file(file, force)
     mazesim.World.builtin(name).save(file)
 
 
