@@ -198,6 +198,18 @@ def test_an_empty_battery_stops_the_motors(tmp_path: Path) -> None:
     assert angles == pytest.approx([0.16, 0.32, 0.48, 0.64, 0.64, 0.64], abs=0.004)
 
 
+def test_a_battery_that_starts_empty_leaves_the_motors_on(tmp_path: Path) -> None:
+    """Robot ``battery`` [0, 100, 0], as a world saved after its robot ran out: Webots drains and
+    powers a robot off only while its energy is above 0 (``WbRobot::postPhysicsStep`` steps the
+    energy down when it is > 0 and calls ``setCurrentEnergy``, which calls ``powerOn(false)``
+    when it reaches 0; a robot starts powered on). So a robot whose battery starts at 0 drives
+    on, its battery reading 0."""
+    _, logs = run("battery_empty", tmp_path, 1.0)
+    levels, angles = zip(*logs["battery_empty"]["rows"], strict=True)
+    assert levels == pytest.approx([0.0] * 6, abs=1e-12)
+    assert angles == pytest.approx([0.16 * k for k in range(1, 7)], abs=0.004)
+
+
 def test_a_c_controller_walks_the_e_puck_s_devices_by_index(
     tmp_path: Path, own_cache: Path
 ) -> None:

@@ -398,6 +398,15 @@ def battery_energy(simulation: RobotSimulation, steps: int | None = None) -> flo
     return max(0.0, battery[0] - used) if battery[0] > 0.0 else battery[0]
 
 
+def battery_ran_out(simulation: RobotSimulation) -> bool:
+    """Whether the robot's battery started with energy and has none left: Webots drains a
+    battery and powers its robot off only while its energy is above 0
+    (``WbRobot::postPhysicsStep``, ``setCurrentEnergy``), so a battery that starts at 0 (a
+    world saved after its robot ran out) leaves the robot powered on."""
+    battery = getattr(simulation.scene, "robot_battery", ())
+    return bool(battery) and battery[0] > 0.0 and battery_energy(simulation) == 0.0
+
+
 def discretize(value: float, resolution: float) -> float:
     """``value`` to a sensor's ``resolution`` as Webots rounds it
     (``WbMathsUtilities::discretize``: ``int(value / resolution + 0.5) * resolution``, the cast
@@ -828,9 +837,9 @@ class Motor(Device):
         """The wheel speed (rad/s) for the next step, the wheel being at ``angle``: the motor
         control's, reached at once or, with an acceleration set, ramped towards from the last
         step's by at most the acceleration times the step."""
-        if self._available_torque == 0.0 or battery_energy(self._simulation) == 0.0:
-            # Webots: "no control" (WbMotor::computeCurrentDynamicVelocity); an empty battery
-            # powers the motors off (WbMotor::powerOn), leaving them none.
+        if self._available_torque == 0.0 or battery_ran_out(self._simulation):
+            # Webots: "no control" (WbMotor::computeCurrentDynamicVelocity); a battery that ran
+            # out powers the motors off (WbMotor::powerOn), leaving them none.
             self._current_speed = 0.0
             return 0.0
         control = None
