@@ -121,24 +121,32 @@ def test_the_single_robot_settings_are_refused_on_several_robots() -> None:
             refuse_single_robot_settings(settings, "three")
 
 
+def _beside_bridge(
+    master: LocalMaster, bridge_arguments: list[str], *program: str
+) -> tuple[Any, dict[str, str]]:
+    """Runs the bridge with ``bridge_arguments`` and the Python ``program`` (its arguments) until
+    the program ends: what it printed last (JSON) and the topics' types the master knew then."""
+    bridge = spawn_bridge(master, *bridge_arguments)
+    try:
+        ran = subprocess.run(
+            [sys.executable, *program],
+            env=master.env,
+            capture_output=True,
+            text=True,
+            timeout=300,
+            check=False,
+        )
+        assert ran.returncode == 0, ran.stdout + ran.stderr
+        return json.loads(ran.stdout.strip().splitlines()[-1]), topic_types(master)
+    finally:
+        bridge.terminate()
+        bridge.wait(timeout=60)
+
+
 def _drive(master: LocalMaster, world_file: Path, *arguments: str) -> tuple[Any, dict[str, str]]:
     """Runs the bridge on ``world_file`` and the driver with ``arguments`` until the driver ends:
     what the driver printed last (JSON) and the topics' types the master knew then."""
-    bridge = spawn_bridge(master, "--world", str(world_file))
-    driver = subprocess.run(
-        [sys.executable, str(DRIVER), *arguments],
-        env=master.env,
-        capture_output=True,
-        text=True,
-        timeout=300,
-        check=False,
-    )
-    assert driver.returncode == 0, driver.stdout + driver.stderr
-    served = json.loads(driver.stdout.strip().splitlines()[-1])
-    kinds = topic_types(master)
-    bridge.terminate()
-    bridge.wait(timeout=60)
-    return served, kinds
+    return _beside_bridge(master, ["--world", str(world_file)], str(DRIVER), *arguments)
 
 
 @needs_ros
@@ -179,19 +187,13 @@ def test_realtime_steps_every_robot_with_its_last_command(
     namespaces = ["/west", "/east_1", "/north"]
     commands_file = tmp_path / "commands.json"
     commands_file.write_text(json.dumps([[["motor", [4.0, 4.0]], None, None]] * 10))
-    bridge = spawn_bridge(master, "--world", str(world_file), "--mode", "realtime")
-    driver = subprocess.run(
-        [sys.executable, str(DRIVER), json.dumps(namespaces), str(commands_file)],
-        env=master.env,
-        capture_output=True,
-        text=True,
-        timeout=300,
-        check=False,
+    (west, _, north), _ = _beside_bridge(
+        master,
+        ["--world", str(world_file), "--mode", "realtime"],
+        str(DRIVER),
+        json.dumps(namespaces),
+        str(commands_file),
     )
-    bridge.terminate()
-    bridge.wait(timeout=60)
-    assert driver.returncode == 0, driver.stdout + driver.stderr
-    west, _, north = json.loads(driver.stdout.strip().splitlines()[-1])
     assert west[-1][3] > west[0][3] and north[-1][3] > north[0][3]  # simulated time ran
     assert west[-1][0] > west[0][0]  # driven along +x
     assert north[-1][:3] == north[0][:3]  # never commanded: stands
@@ -253,3 +255,37 @@ def test_every_robot_publishes_odom_and_tf_in_frames_named_after_its_namespace(
         )
     # The robots moved apart: tf2 kept each robot's frames its own.
     assert served["tf"][0][-1] != served["tf"][1][-1]
+
+
+#: A node with a writer on /west/motor that never commands: it records every /tf stamp and every
+#: /west/pose time for 7.5 s, past the bridge's resend wait.
+_SILENT_WRITER = """
+import json, time
+import rospy
+from std_msgs.msg import Float64MultiArray
+from tf2_msgs.msg import TFMessage
+rospy.init_node("silent_writer", disable_signals=True)
+seen = {"tf": [], "pose": []}
+stamp = lambda m: m.transforms[0].header.stamp.to_nsec()
+rospy.Subscriber("/tf", TFMessage, lambda m: seen["tf"].append(stamp(m)))
+rospy.Subscriber("/west/pose", Float64MultiArray, lambda m: seen["pose"].append(m.data[3]))
+motor = rospy.Publisher("/west/motor", Float64MultiArray, queue_size=1)
+time.sleep(7.5)
+print(json.dumps(seen))
+"""
+
+
+@needs_ros
+def test_a_state_sent_again_on_several_robots_leaves_tf_out(
+    master: LocalMaster, tmp_path: Path
+) -> None:
+    # The reset state went unanswered while a command writer was connected: the bridge sends
+    # it again after 5 s, every robot's topics but /tf, which went out at that stamp already
+    # (tf2 warns TF_REPEATED_DATA of a transform again at one stamp), as the one-robot bridge.
+    world_file = tmp_path / "three.toml"
+    world_file.write_text(THREE_ROBOTS)
+    seen, _ = _beside_bridge(master, ["--world", str(world_file)], "-c", _SILENT_WRITER)
+    log = Path(master.log_path("bridge")).read_text()
+    assert "publishing the reset state again" in log, log
+    assert len(seen["pose"]) >= 2 and set(seen["pose"]) == {0.0}, seen  # the reset state, again
+    assert seen["tf"] == [1], seen  # once, at the reset state's stamp (1 ns)

@@ -679,9 +679,7 @@ class Bridge:
             finally:
                 self._sending_again = False
             return
-        for made, message in list(self.last_state):
-            if made.resolved_name == standard.TF_TOPIC:
-                continue
+        for made, message in standard.state_to_send_again(self.last_state):
             if made is self.clock_publisher.made and self._idle_since is not None:
                 continue
             made.publish(message)

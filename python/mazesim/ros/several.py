@@ -20,9 +20,10 @@ bridges): a robot nobody drives keeps its wheel speeds (at first, none), and a r
 two commands before the others send one has the second stepped in the next step. A run is the
 in-process run of ``Simulator.step_robots`` with the same commands, whatever the order in which
 they arrive. When no step has come ``RESEND_S`` seconds after a state went out while a command
-publisher is connected, every robot's state goes out again (a controller that commanded before
-the bridge listened gets another). In ``realtime`` the world steps on its own with every robot's
-last wheel speeds.
+publisher is connected, every robot's state goes out again, ``/tf`` aside (it went out at that
+stamp already: :func:`mazesim.ros.standard.state_to_send_again`, the one-robot bridge's rule); a
+controller that commanded before the bridge listened gets another. In ``realtime`` the world
+steps on its own with every robot's last wheel speeds.
 
 The single-robot bridge's ``command_period``, ``command_deadline``, ``stop_at_goal`` and ``bag`` and
 the reset services are not offered on several robots: the bridge refuses those settings rather than
@@ -279,7 +280,7 @@ class SeveralRobotsBridge:
             )
             if notice is not None:
                 self.ros.rospy.logwarn(notice)
-            for made, message in list(self.last_state):
+            for made, message in standard.state_to_send_again(self.last_state):
                 made.publish(message)
             self.unanswered.went_out(time.monotonic())
 

@@ -59,6 +59,7 @@ __all__ = [
     "scan_angles",
     "scan_ranges",
     "sensor_frames",
+    "state_to_send_again",
     "twist_wheel_speeds",
     "yaw_quaternion",
 ]
@@ -397,3 +398,12 @@ class StandardPublishers:
             scan.header.frame_id = self.frame(SCAN_FRAME)
             self.scan_publisher.publish(scan)
         return [transform]
+
+
+def state_to_send_again(last_state: list[tuple[Any, Any]]) -> list[tuple[Any, Any]]:
+    """The messages of a state (publisher, message, as they went out) that a ROS 1 bridge sends
+    again when it went unanswered: all but ``/tf``, which went out at the state's stamp already.
+    tf2 keeps transforms by stamp and warns of the same one again (``TF_REPEATED_DATA``); a
+    subscription that connected since gets it on connecting. The rule of both ROS 1 bridges,
+    one robot or several."""
+    return [(made, message) for made, message in last_state if made.resolved_name != TF_TOPIC]

@@ -403,8 +403,10 @@ def battery_ran_out(simulation: RobotSimulation) -> bool:
     battery and powers its robot off only while its energy is above 0
     (``WbRobot::postPhysicsStep``, ``setCurrentEnergy``), so a battery that starts at 0 (a
     world saved after its robot ran out) leaves the robot powered on."""
-    battery = getattr(simulation.scene, "robot_battery", ())
-    return bool(battery) and battery[0] > 0.0 and battery_energy(simulation) == 0.0
+    battery: tuple[float, ...] = tuple(getattr(simulation.scene, "robot_battery", ()))
+    if not battery:
+        return False
+    return battery[0] > 0.0 and battery_energy(simulation) == 0.0
 
 
 def discretize(value: float, resolution: float) -> float:
