@@ -27,6 +27,7 @@ __all__ = [
     "run_probe",
     "spawn_bridge",
     "spawn_launch",
+    "stop_launch",
 ]
 
 #: The repository's root folder.
@@ -85,6 +86,18 @@ def spawn_launch(
         env={"ROS_PACKAGE_PATH": str(REPO / "ros"), "MAZESIM_TEST_LAUNCH": tag, **env},
     )
     return launch, tag
+
+
+def stop_launch(launch: subprocess.Popen[bytes]) -> int:
+    """Stops a ``roslaunch`` as Ctrl-C does and returns its exit code. roslaunch gives each node
+    its own SIGINT timeout, then SIGTERM's, before it exits (``roslaunch.nodeprocess``: 15 s and
+    2 s): the wait here is longer than both, so that a node slow to stop on a loaded machine is
+    ended by roslaunch's own rule, not by a test's SIGTERM to roslaunch that leaves it behind."""
+    from roslaunch.nodeprocess import DEFAULT_TIMEOUT_SIGINT, DEFAULT_TIMEOUT_SIGTERM
+
+    return LocalMaster.stop_process(
+        launch, grace=DEFAULT_TIMEOUT_SIGINT + DEFAULT_TIMEOUT_SIGTERM + 5.0
+    )
 
 
 def processes_with(variable: str, value: str) -> list[int]:

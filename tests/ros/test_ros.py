@@ -47,6 +47,7 @@ from ros_support import (
     run_probe,
     spawn_bridge,
     spawn_launch,
+    stop_launch,
     wait_for_subscriber,
 )
 
@@ -607,7 +608,7 @@ def test_launch_file_runs_and_stops_without_leftovers(master: LocalMaster) -> No
     # caught (it joins the run at a step that depends on the load).
     assert_poses_of_the_in_process_run(seen["data"]["pose"], "avoid-collision", 2, "arena")
 
-    assert LocalMaster.stop_process(launch) == 0  # SIGINT, as Ctrl-C
+    assert stop_launch(launch) == 0  # SIGINT, as Ctrl-C
     assert processes_with("MAZESIM_TEST_LAUNCH", tag) == []
 
 

@@ -26,6 +26,7 @@ from ros_support import (
     run_probe,
     spawn_bridge,
     spawn_launch,
+    stop_launch,
     topic_types,
 )
 
@@ -236,7 +237,7 @@ def test_view_launch_runs_without_a_display(master: LocalMaster) -> None:
     assert seen["data"]["pose"][-1][3] > seen["data"]["pose"][0][3]
     types = topic_types(master)
     assert types["/odom"] == "nav_msgs/Odometry" and types["/ps0"] == "sensor_msgs/Range"
-    assert LocalMaster.stop_process(launch) == 0
+    assert stop_launch(launch) == 0
     log = Path(master.log_path("roslaunch")).read_text()
     assert "rviz not started: no display" in log
     assert "Traceback" not in log
