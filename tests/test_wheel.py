@@ -124,6 +124,8 @@ def test_wheel_carries_the_c_controller_library(built: tuple[Path, Path]) -> Non
         if path.suffix in (".c", ".h")
     }
     assert len(files) > 20 and files <= names, sorted(files - names)
+    # ...and every controller's classes answer by the table of Webots' API names.
+    assert "mazesim/webots/webots_api.toml" in names
 
 
 def test_release_wheel_runs_the_demo_and_the_quick_start_from_anywhere(

@@ -94,8 +94,10 @@ def test_what_is_not_simulated_answers_instead_of_raising(
 ) -> None:
     robot = make_robot()
     assert robot.getUrdf().startswith("<?xml")
-    assert robot.someFutureWebotsCall(1, 2) is None
-    assert "Robot.someFutureWebotsCall() is not available in mazesim" in capsys.readouterr().err
+    assert robot.getKeyboard().getKeyCode() is None  # a Webots method mazesim lacks
+    assert "Keyboard.getKeyCode() is not available in mazesim" in capsys.readouterr().err
+    with pytest.raises(AttributeError):  # not a name of Webots' API: raised, as in Webots
+        robot.someFutureWebotsCall(1, 2)
     with pytest.raises(AttributeError):
         robot._private_name  # noqa: B018
     assert robot.getDeviceByIndex(999) is None

@@ -108,3 +108,23 @@ def test_an_appearance_field_the_file_leaves_out_is_read_and_set_at_its_default(
     transparency.setSFFloat(0.8)
     supervisor.step(32)
     assert transparency.getSFFloat() == pytest.approx(0.8)
+
+
+def test_a_field_of_three_numbers_other_than_translation_is_set_and_read_back(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    # A T-maze supervisor puts its cue light far away (SpotLight.location.setSFVec3f): Webots
+    # sets the field; mazesim said the SFVec3f field was of the wrong type and kept it.
+    supervisor = supervisor_in(
+        tmp_path,
+        "#VRML_SIM R2023b utf8\n"
+        "DEF CUE SpotLight { location 0.3 0.1 0.2 direction 0 0 -1 }\n"
+        "DEF EPUCK E-puck { supervisor TRUE }\n",
+    )
+    location = supervisor.getFromDef("CUE").getField("location")
+    assert location.getTypeName() == "SFVec3f"
+    location.setSFVec3f([20.0, 0.0, 20.0])
+    supervisor.step(32)
+    assert location.getSFVec3f() == pytest.approx([20.0, 0.0, 20.0])
+    assert location.value == pytest.approx([20.0, 0.0, 20.0])
+    assert "called with a field of type" not in capsys.readouterr().err

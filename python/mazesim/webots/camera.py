@@ -30,13 +30,14 @@ import numpy.typing as npt
 
 from mazesim._hot_paths import checks_own_arguments
 from mazesim.errors import InvalidArgumentError, WrongTypeError, _shown
-from mazesim.webots.devices import _print_error, _Sensor, sampling_period, webots_property
+from mazesim.webots.devices import _print_error, _Sensor, sampling_period
 from mazesim.webots.frames import Axes, axes_or_none, camera_heading
 from mazesim.webots.node_types import node_type
 from mazesim.webots.rays import FloorPaint, WallBoxes
 from mazesim.webots.recognition import CameraPose, RecognisedObject, recogniser_of
 from mazesim.webots.robot_frames import Mount, RobotShape
 from mazesim.webots.walls_now import WallsNow
+from mazesim.webots.webots_api import webots_property
 
 if TYPE_CHECKING:
     from mazesim.webots.simulation import RobotSimulation

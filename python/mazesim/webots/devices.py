@@ -23,6 +23,7 @@ from mazesim._toml import load_toml
 from mazesim.errors import MOST_MESSAGE, InvalidArgumentError, _a_type, _shortened
 from mazesim.webots.last_commands import PositionControl, WheelCommand, motor_speed
 from mazesim.webots.node_types import node_type
+from mazesim.webots.webots_api import NotSimulated, webots_property
 
 if TYPE_CHECKING:
     from mazesim._core import RobotProfile
@@ -95,19 +96,6 @@ def noise_stream(simulation: RobotSimulation, name: str) -> np.random.Generator 
         return None
     key = zlib.crc32(name.encode("utf-8"))
     return np.random.default_rng(np.random.SeedSequence(simulation.seed, spawn_key=(key,)))
-
-
-def webots_property(getter: str, setter: str | None = None) -> Any:
-    """The property style of a Webots method, as Webots' Python API pairs them: reading the
-    property calls ``getter`` and, when ``setter`` is given, assigning it calls ``setter``."""
-    doc = f":meth:`{getter}` as a property"
-    if setter is None:
-        return property(lambda self: getattr(self, getter)(), doc=f"{doc}.")
-    return property(
-        lambda self: getattr(self, getter)(),
-        lambda self, value: getattr(self, setter)(value),
-        doc=f"{doc}; assigning it calls :meth:`{setter}`.",
-    )
 
 
 def derived_reading(width: int = 0) -> Callable[[Callable[..., Any]], Callable[..., Any]]:
@@ -345,7 +333,7 @@ class _DeviceType(type):
         return super().__call__(*args, **kwargs)
 
 
-class Device(metaclass=_DeviceType):
+class Device(NotSimulated, metaclass=_DeviceType):
     """A device of the robot, found by its name."""
 
     #: Webots' node type of the device (``Node.DISTANCE_SENSOR``...), set by each class.
@@ -419,7 +407,9 @@ def discretize(value: float, resolution: float) -> float:
 
 
 class _Sensor(Sampled, Device):
-    """A sampled sensor: enable, disable, getSamplingPeriod, getValue."""
+    """A sampled sensor: enable, disable, getSamplingPeriod, getValue (Webots' ``Sensor``)."""
+
+    _webots_name: ClassVar[str] = "Sensor"
 
     def __init__(self, name: str, simulation: RobotSimulation) -> None:
         super().__init__(name, simulation)

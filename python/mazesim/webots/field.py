@@ -28,10 +28,10 @@ from mazesim.errors import (
     _shown,
 )
 from mazesim.webots import simulation as _simulations
-from mazesim.webots.devices import _print_error, webots_property
+from mazesim.webots.devices import _print_error
 from mazesim.webots.frames import enu_to_nue, nue_to_enu, rotation_matrix
 from mazesim.webots.importer import MAX_WORLD_BYTES
-from mazesim.webots.inert import NotSimulated
+from mazesim.webots.webots_api import NotSimulated, webots_property
 
 if TYPE_CHECKING:
     from mazesim.webots.supervisor import Node
@@ -258,10 +258,11 @@ class Field(NotSimulated):
 
     def setSFVec3f(self, values: list[float]) -> None:
         """Moves the robot, or what the node holds, to [x, y, z] (z is ignored: everything stays
-        on the floor); another node's translation is recorded."""
+        on the floor); another node's translation is recorded, and so is another field of three
+        numbers (a light's ``location``, a ``scale``): it reads back as set."""
         vector = field_value(values, 3, "Field.setSFVec3f")
         if self._name != "translation":
-            self._wrong("set_sf_vec3f")
+            self._set_numbers("set_sf_vec3f", (self.SF_VEC3F, self.SF_COLOR), vector)
             return
         node = self._node
         x, y, z = _in(vector)

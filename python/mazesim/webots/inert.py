@@ -7,8 +7,8 @@ VacuumGripper, Skin, Motion) can be imported and constructed as in Webots, but t
 such device: their readings are Webots' values for a missing device.
 
 A method of Webots' API that mazesim does not simulate prints Webots-style
-``Error: <call>() is not available in mazesim`` on stderr and returns None, instead of raising
-``AttributeError`` (see :class:`NotSimulated`).
+``Error: <call>() is not available in mazesim`` on stderr and returns None; a name Webots' API
+does not have raises ``AttributeError``, as in Webots (see :mod:`mazesim.webots.webots_api`).
 """
 
 from __future__ import annotations
@@ -16,13 +16,13 @@ from __future__ import annotations
 import math
 import sys
 import wave
-from collections.abc import Callable
 from types import SimpleNamespace
 from typing import TYPE_CHECKING, Any
 
 from mazesim.errors import _shown
 from mazesim.webots.devices import Device, _ScalarSensor
 from mazesim.webots.node_types import node_type
+from mazesim.webots.webots_api import NotSimulated
 
 if TYPE_CHECKING:
     from mazesim.webots.simulation import RobotSimulation
@@ -47,34 +47,14 @@ __all__ = [
 ]
 
 
-class NotSimulated:
-    """Mixin: a Webots API name that the class does not define prints an error, returns None.
-
-    Only names in Webots' style (a lower-case letter first, no underscore) are answered; any
-    other missing attribute is an ``AttributeError`` as usual.
-    """
-
-    def __getattr__(self, name: str) -> Callable[..., None]:
-        if not name[:1].islower() or "_" in name:
-            raise AttributeError(
-                f"{_shown(type(self).__name__)} object has no attribute {_shown(name)}"
-            )
-        owner = type(self).__name__
-
-        def not_simulated(*args: Any, **kwargs: Any) -> None:
-            print(f"Error: {owner}.{name}() is not available in mazesim.", file=sys.stderr)
-
-        return not_simulated
-
-
-class _Inert(NotSimulated, _ScalarSensor):
+class _Inert(_ScalarSensor):
     """A device the e-puck does not carry: enable/disable work, readings are NaN."""
 
     def _read(self) -> float:
         return math.nan
 
 
-class Speaker(NotSimulated, Device):
+class Speaker(Device):
     """The e-puck's speaker: nothing is heard, but a sound plays for as long as its file
     lasts (``isSoundPlaying``), as Webots' speaker plays it; speech is accepted, not said."""
 
@@ -383,7 +363,7 @@ class Connector(_Inert):
         return -1
 
 
-class Brake(NotSimulated, Device):
+class Brake(Device):
     """A brake (the e-puck's wheels have none)."""
 
     _node_type = node_type("BRAKE")

@@ -20,7 +20,8 @@ from typing import TYPE_CHECKING, NamedTuple
 
 from mazesim._paths import read_text
 from mazesim.errors import InvalidArgumentError, _shown
-from mazesim.webots.devices import Sampled, webots_property
+from mazesim.webots.devices import Sampled
+from mazesim.webots.webots_api import NotSimulated, webots_property
 
 if TYPE_CHECKING:
     from mazesim.webots.simulation import RobotSimulation
@@ -160,7 +161,7 @@ def read_keys(path: str | os.PathLike[str]) -> KeyScript:
     return KeyScript.parse(text, file)
 
 
-class _Polled(Sampled):
+class _Polled(Sampled, NotSimulated):
     """An input device sampled every period: enable, disable, getSamplingPeriod."""
 
     _api = "wb_keyboard"

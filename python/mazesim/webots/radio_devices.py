@@ -28,9 +28,8 @@ from collections.abc import Mapping, Sequence
 from typing import TYPE_CHECKING, Any
 
 from mazesim.errors import InvalidArgumentError, WrongTypeError, _a_type, _shown
-from mazesim.webots.devices import Device, _print_error, _Sensor, webots_property
+from mazesim.webots.devices import Device, _print_error, _Sensor
 from mazesim.webots.frames import ENU_TO_NUE, Axes, axes_or_none
-from mazesim.webots.inert import NotSimulated
 from mazesim.webots.node_types import node_type
 from mazesim.webots.radio import (
     CHANNEL_BROADCAST,
@@ -41,6 +40,7 @@ from mazesim.webots.radio import (
     Packet,
     transmission_type,
 )
+from mazesim.webots.webots_api import webots_property
 
 if TYPE_CHECKING:
     from mazesim.webots.simulation import RobotSimulation
@@ -160,7 +160,7 @@ class _Tuned:
     channel = webots_property("getChannel", "setChannel")
 
 
-class Emitter(_Tuned, NotSimulated, Device):
+class Emitter(_Tuned, Device):
     """An emitter: ``send``, channel, range and buffer size; its ``kind`` (the node's ``type``,
     "radio", "serial" or "infra-red") is the only type of receiver that hears it, and an
     infra-red one sends only along a line of sight, within its ``cone`` (None: all around)."""
@@ -246,7 +246,7 @@ class Emitter(_Tuned, NotSimulated, Device):
     buffer_size = webots_property("getBufferSize")
 
 
-class Receiver(_Tuned, NotSimulated, _Sensor):
+class Receiver(_Tuned, _Sensor):
     """A receiver: its queue of packets, sampled every sampling period; it hears only
     emitters of its ``kind`` (the node's ``type``), and an infra-red one only within its
     ``cone`` (None: all around)."""

@@ -16,13 +16,12 @@ from mazesim.webots.devices import (
     MAX_SAMPLING_PERIOD_MS,
     battery_energy,
     sampling_period,
-    webots_property,
 )
 from mazesim.webots.equipment import Equipment
-from mazesim.webots.inert import NotSimulated
 from mazesim.webots.keyboard import Joystick, Keyboard, Mouse
 from mazesim.webots.node_types import node_type
 from mazesim.webots.termination import GRACE_SECONDS, unwind_controller
+from mazesim.webots.webots_api import NotSimulated, webots_property
 
 __all__ = ["ControllerStopped", "Robot"]
 

@@ -28,7 +28,7 @@ from typing import Any
 from mazesim._atomic import atomic_file
 from mazesim.errors import MazesimError
 from mazesim.webots import simulation as _simulations
-from mazesim.webots.devices import _print_error, webots_property
+from mazesim.webots.devices import _print_error
 from mazesim.webots.field import (
     Field,
     _file_frame,
@@ -45,7 +45,7 @@ from mazesim.webots.frames import (
     rotation_matrix,
 )
 from mazesim.webots.importer import E_PUCK_MODELS
-from mazesim.webots.inert import ContactPoint, NotSimulated
+from mazesim.webots.inert import ContactPoint
 from mazesim.webots.movie import MovieRecorder
 from mazesim.webots.node_types import NODE_TYPES
 from mazesim.webots.proto_fields import declared_fields
@@ -63,6 +63,7 @@ from mazesim.webots.solids import (
     world_objects,
 )
 from mazesim.webots.supervisor_refusal import _refuse_supervisor
+from mazesim.webots.webots_api import NotSimulated, webots_property
 from mazesim.webots.world_save import with_fields
 
 __all__ = ["Field", "Node", "Supervisor"]

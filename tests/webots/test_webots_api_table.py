@@ -1,0 +1,150 @@
+"""Webots' Python API as one table of names (``mazesim/webots/webots_api.toml``): every class
+of the ``controller`` module has each of Webots' constants, answers each of Webots' methods and
+properties (a property by its getter, by construction), and raises ``AttributeError`` for a
+name Webots' API does not have, as Webots does (a misspelt call stops the controller)."""
+
+from __future__ import annotations
+
+import math
+import subprocess
+import sys
+from collections.abc import Iterator
+from typing import Any
+
+import pytest
+
+import mazesim
+from mazesim.webots import controller, prepare
+from mazesim.webots import simulation as simulations
+from mazesim.webots.webots_api import NotSimulated, webots_class, webots_classes
+
+#: Webots' classes of records and of constants, without the table's mixin (their missing names
+#: raise AttributeError as any Python class's do).
+RECORDS = {
+    "AnsiCodes", "CameraRecognitionObject", "ContactPoint", "LidarPoint", "MouseState",
+    "RadarTarget",
+}  # fmt: skip
+
+
+@pytest.fixture
+def robot() -> Iterator[Any]:
+    prepare(mazesim.load_world("arena"), seconds=5.0, noise=False)
+    controller.Robot.created = None
+    yield controller.Supervisor()
+    controller.Robot.created = None
+    simulations.release()
+
+
+def _same(a: Any, b: Any) -> bool:
+    if isinstance(a, float) and isinstance(b, float) and math.isnan(a) and math.isnan(b):
+        return True
+    if isinstance(a, list) and isinstance(b, list):
+        return len(a) == len(b) and all(_same(x, y) for x, y in zip(a, b))
+    return bool(a == b)
+
+
+def test_every_class_of_the_table_is_one_of_the_controller_module() -> None:
+    missing = sorted(name for name in webots_classes() if not hasattr(controller, name))
+    assert missing == []
+    for name in webots_classes():
+        cls = getattr(controller, name)
+        assert webots_class(cls) == name or name in RECORDS
+        assert name in RECORDS or issubclass(cls, NotSimulated), name
+
+
+def test_every_class_has_webots_constants() -> None:
+    missing = {
+        name: sorted(c for c in found.constants if not hasattr(getattr(controller, name), c))
+        for name, found in webots_classes().items()
+    }
+    assert {name: names for name, names in missing.items() if names} == {}
+
+
+def test_every_webots_property_is_on_its_class() -> None:
+    # A property without a method of its own (a Receiver's raw ``data``) answers as a method
+    # mazesim does not simulate; every other one is a property of the class.
+    missing = {
+        name: sorted(
+            p
+            for p, methods in found.properties.items()
+            if any(methods) and not hasattr(getattr(controller, name), p)
+        )
+        for name, found in webots_classes().items()
+        if name not in RECORDS
+    }
+    assert {name: names for name, names in missing.items() if names} == {}
+
+
+def test_a_property_reads_as_its_getter_on_every_device_of_the_e_puck(robot: Any) -> None:
+    checked = 0
+    for index in range(robot.getNumberOfDevices()):
+        device = robot.getDeviceByIndex(index)
+        found = webots_classes()[webots_class(type(device)) or ""]
+        for prop, (getter, _) in found.properties.items():
+            if not getter or not hasattr(type(device), getter):
+                continue
+            try:
+                expected = getattr(device, getter)()
+            except TypeError:  # a getter that takes arguments
+                continue
+            assert _same(getattr(device, prop), expected), (device, prop)
+            checked += 1
+    assert checked > 50
+
+
+def test_a_webots_method_mazesim_does_not_simulate_answers(
+    robot: Any, capsys: pytest.CaptureFixture[str]
+) -> None:
+    simulated = 0
+    for name in sorted(webots_classes()["Supervisor"].methods):
+        if hasattr(type(robot), name):
+            simulated += 1
+            continue
+        assert callable(getattr(robot, name)), name
+    assert simulated > 60
+    unanswered = sorted(webots_classes()["Supervisor"].methods - set(dir(type(robot))))
+    if unanswered:
+        assert getattr(robot, unanswered[0])() is None
+        assert f"Supervisor.{unanswered[0]}() is not available" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("name", ["getDevcie", "someFutureWebotsCall", "setvelocity"])
+def test_a_name_webots_does_not_have_raises_as_in_webots(robot: Any, name: str) -> None:
+    with pytest.raises(AttributeError) as raised:
+        getattr(robot, name)
+    assert str(raised.value) == f"'Supervisor' object has no attribute '{name}'"
+    motor = robot.getDevice("left wheel motor")
+    assert not hasattr(motor, name)
+
+
+def test_a_misspelt_call_gets_pythons_suggestion(robot: Any) -> None:
+    # Python's display of an uncaught AttributeError suggests from its ``name`` and ``obj``.
+    with pytest.raises(AttributeError) as raised:
+        robot.getDevcie("ps0")
+    assert raised.value.name == "getDevcie" and raised.value.obj is robot
+    script = (
+        "from mazesim.webots.webots_api import NotSimulated\n"
+        "class Robot(NotSimulated):\n"
+        "    def getDevice(self): pass\n"
+        "Robot.__module__ = 'mazesim.webots.robot'\n"
+        "Robot().getDevcie\n"
+    )
+    shown = subprocess.run(
+        [sys.executable, "-c", script], capture_output=True, text=True, check=False
+    ).stderr
+    assert "'Robot' object has no attribute 'getDevcie'. Did you mean: 'getDevice'?" in shown
+
+
+def test_a_controllers_subclass_answers_as_its_webots_class(
+    robot: Any, capsys: pytest.CaptureFixture[str]
+) -> None:
+    class Epuck(controller.Supervisor):  # type: ignore[misc]
+        pass
+
+    assert webots_class(Epuck) == "Supervisor"
+    sensor = robot.getDevice("ps0")
+    sensor.enable(32)
+    robot.step(32)
+    assert sensor.value == sensor.getValue() > 0.0
+    with pytest.raises(AttributeError):
+        sensor.getValeu  # noqa: B018
