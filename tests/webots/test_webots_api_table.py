@@ -148,3 +148,16 @@ def test_a_controllers_subclass_answers_as_its_webots_class(
     assert sensor.value == sensor.getValue() > 0.0
     with pytest.raises(AttributeError):
         sensor.getValeu  # noqa: B018
+
+
+def test_assigning_a_webots_property_calls_its_setter(robot: Any) -> None:
+    # Webots' Motor has target_velocity and target_position: assigning one drives the wheel.
+    motor = robot.getDevice("left wheel motor")
+    motor.target_position = float("inf")
+    motor.target_velocity = 2.5
+    assert motor.getVelocity() == 2.5 and math.isinf(motor.getTargetPosition())
+    sensor = robot.getDevice("ps0")
+    sensor.sampling_period = 64
+    assert sensor.getSamplingPeriod() == 64
+    with pytest.raises(AttributeError):
+        motor.force  # noqa: B018  (write-only in Webots)

@@ -720,8 +720,6 @@ class Camera(_Sensor):
             self._bytes = pixels.tobytes()
         return self._bytes
 
-    image = webots_property("getImage")
-
     def getImageArray(self) -> list[list[list[int]]] | None:
         """The last image as ``image[x][y] = [r, g, b]`` (Webots' column-major lists)."""
         pixels = self._image()
@@ -737,9 +735,6 @@ class Camera(_Sensor):
     def getHeight(self) -> int:
         """Image height in pixels."""
         return self._view.height
-
-    width = webots_property("getWidth")
-    height = webots_property("getHeight")
 
     def getFov(self) -> float:
         """Horizontal field of view in radians."""

@@ -353,19 +353,13 @@ class Device(NotSimulated, metaclass=_DeviceType):
         if getattr(self, "_rng", None) is not None:
             self._rng = noise_stream(self._simulation, self._name)
 
-    name = webots_property("getName")
-
     def getModel(self) -> str:
         """The device's model string (empty, as for the e-puck's devices in Webots)."""
         return ""
 
-    model = webots_property("getModel")
-
     def getNodeType(self) -> int:
         """Webots' node type of the device (a ``Node`` constant)."""
         return self._node_type
-
-    node_type = webots_property("getNodeType")
 
     def __repr__(self) -> str:
         return f"{type(self).__name__}({self._name!r})"
@@ -567,9 +561,6 @@ class DistanceSensor(_Tabled, _ScalarSensor):
             return EPUCK_PROXIMITY_APERTURE
         return 0.0
 
-    max_value = webots_property("getMaxValue")
-    min_value = webots_property("getMinValue")
-
 
 class PositionSensor(_ScalarSensor):
     """A wheel encoder: the wheel's angle in radians."""
@@ -595,8 +586,6 @@ class PositionSensor(_ScalarSensor):
     def getMotor(self) -> Motor | None:
         """The motor of the same wheel."""
         return self._motor
-
-    motor = webots_property("getMotor")
 
     def getBrake(self) -> None:
         """None: the e-puck's wheels have no brake device."""
@@ -817,13 +806,7 @@ class Motor(Device):
 
     velocity = webots_property("getVelocity", "setVelocity")
 
-    target_position = webots_property("getTargetPosition", "setPosition")
-
-    max_velocity = webots_property("getMaxVelocity")
-
     acceleration = webots_property("getAcceleration", "setAcceleration")
-
-    position_sensor = webots_property("getPositionSensor")
 
     def _wheel_speed(self, angle: float) -> float:
         """The wheel speed (rad/s) for the next step, the wheel being at ``angle``: the motor
@@ -876,5 +859,3 @@ class LED(Device):
     def get(self) -> int:
         """The value set last."""
         return self._value
-
-    value = webots_property("get", "set")

@@ -111,8 +111,6 @@ class Field(NotSimulated):
         """The field's name."""
         return self._name
 
-    name = webots_property("getName")
-
     def getType(self) -> int:
         """The field's type (``Field.SF_VEC3F``...)."""
         return self._type

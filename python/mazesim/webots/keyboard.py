@@ -301,8 +301,6 @@ class Joystick(_Polled):
         """False: no joystick is connected."""
         return False
 
-    is_connected = webots_property("isConnected")
-
     def getModel(self) -> str:
         """The empty string: no joystick."""
         return ""

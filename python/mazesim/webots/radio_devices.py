@@ -241,10 +241,6 @@ class Emitter(_Tuned, Device):
         """The bytes the emitter may queue in one step (-1: unlimited)."""
         return self._buffer_size
 
-    range = webots_property("getRange", "setRange")
-
-    buffer_size = webots_property("getBufferSize")
-
 
 class Receiver(_Tuned, _Sensor):
     """A receiver: its queue of packets, sampled every sampling period; it hears only
@@ -396,8 +392,6 @@ class Receiver(_Tuned, _Sensor):
         if tuned is not None:
             self._channel = tuned
             self._tune()
-
-    queue_length = webots_property("getQueueLength")
 
 
 def _int_field(fields: Mapping[str, Any], name: str, default: int) -> int:

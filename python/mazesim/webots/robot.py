@@ -21,7 +21,7 @@ from mazesim.webots.equipment import Equipment
 from mazesim.webots.keyboard import Joystick, Keyboard, Mouse
 from mazesim.webots.node_types import node_type
 from mazesim.webots.termination import GRACE_SECONDS, unwind_controller
-from mazesim.webots.webots_api import NotSimulated, webots_property
+from mazesim.webots.webots_api import NotSimulated
 
 __all__ = ["ControllerStopped", "Robot"]
 
@@ -165,19 +165,13 @@ class Robot(NotSimulated):
         """The world's basic time step in milliseconds (``WorldInfo.basicTimeStep``)."""
         return self._simulation.basic_time_step_ms
 
-    basic_time_step = webots_property("getBasicTimeStep")
-
     def getTime(self) -> float:
         """Simulated seconds since the start, or since a supervisor last reset the world."""
         return self._simulation.clock
 
-    time = webots_property("getTime")
-
     def getName(self) -> str:
         """The robot's name: the world's ``name`` field of the robot, by default ``"e-puck"``."""
         return self._simulation.scene.robot_name
-
-    name = webots_property("getName")
 
     def getModel(self) -> str:
         """The robot's model as Webots reports it: the E-puck PROTO's ``model`` field,
@@ -186,8 +180,6 @@ class Robot(NotSimulated):
         if profile.startswith("e-puck"):
             return "GCtronic e-puck2" if profile == "e-puck2" else "GCtronic e-puck"
         return profile
-
-    model = webots_property("getModel")
 
     def getCustomData(self) -> str:
         """The robot's ``customData`` string: the world file's, or the last one set, by
@@ -208,22 +200,16 @@ class Robot(NotSimulated):
     getData = getCustomData
     setData = setCustomData
 
-    custom_data = webots_property("getCustomData", "setCustomData")
-
     def getSupervisor(self) -> bool:
         """Whether the robot is a supervisor: the world says so, or its controller made one and
         the world does not refuse it (:mod:`~mazesim.webots.supervisor_refusal`)."""
         return self._simulation.supervisor
-
-    supervisor = webots_property("getSupervisor")
 
     def getSynchronization(self) -> bool:
         """The robot's ``synchronization`` field (TRUE unless the world says FALSE), as Webots
         gives it. mazesim waits for every controller at every step whatever it says: a run
         without waiting would depend on how fast the controllers run."""
         return self._simulation.scene.synchronization
-
-    synchronization = webots_property("getSynchronization")
 
     def getMode(self) -> int:
         """:data:`MODE_SIMULATION`."""
@@ -233,8 +219,6 @@ class Robot(NotSimulated):
         """Only simulation is possible: any other mode prints Webots' error."""
         if mode != self.MODE_SIMULATION:
             print("Error: wb_robot_set_mode(): no remote control plugin.", file=sys.stderr)
-
-    mode = webots_property("getMode")
 
     def getProjectPath(self) -> str:
         """The controller's project folder (the folder above ``controllers/``, else its own)."""
@@ -247,10 +231,6 @@ class Robot(NotSimulated):
     def getWorldPath(self) -> str:
         """The world file's path, or the world's name for a built-in world."""
         return str(self._simulation.report.get("path") or self._simulation.world.name)
-
-    project_path = webots_property("getProjectPath")
-
-    world_path = webots_property("getWorldPath")
 
     def getControllerName(self) -> str:
         """The controller's name, as the robot's ``controller`` field gives it in Webots: the
@@ -430,8 +410,6 @@ class Robot(NotSimulated):
     def getNumberOfDevices(self) -> int:
         """How many devices the robot has."""
         return len(self._equipment.devices)
-
-    number_of_devices = webots_property("getNumberOfDevices")
 
     def getDeviceByIndex(self, index: int) -> Any:
         """The device at ``index``, or None (with Webots' message) out of range."""

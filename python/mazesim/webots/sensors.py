@@ -25,7 +25,6 @@ from mazesim.webots.devices import (
     _VectorSensor,
     derived_reading,
     noise_stream,
-    webots_property,
 )
 from mazesim.webots.frames import Axes, axes_or_none, enu_to_nue, nue_to_enu
 from mazesim.webots.lights import irradiance
@@ -253,8 +252,6 @@ class GPS(_TableVector):
         vx, vy, _ = self._simulation.velocity
         return math.hypot(vx, vy)
 
-    speed = webots_property("getSpeed")
-
     @derived_reading(3)
     def getSpeedVector(self) -> list[float]:
         """The velocity (m/s) in the world frame over the last step; NaNs before the first
@@ -262,13 +259,9 @@ class GPS(_TableVector):
         vx, vy, _ = self._simulation.velocity
         return list(enu_to_nue(vx, vy, 0.0)) if self._simulation.scene.nue else [vx, vy, 0.0]
 
-    speed_vector = webots_property("getSpeedVector")
-
     def getCoordinateSystem(self) -> int:
         """:data:`LOCAL`: metres in the world frame."""
         return self.LOCAL
-
-    coordinate_system = webots_property("getCoordinateSystem")
 
     @staticmethod
     def convertToDegreesMinutesSeconds(decimalDegree: float) -> str:
@@ -347,8 +340,6 @@ class InertialUnit(_TableVector):
         """[roll, pitch, yaw] in radians; NaNs before the first sampling period."""
         return list(self._reading("get_roll_pitch_yaw"))
 
-    roll_pitch_yaw = webots_property("getRollPitchYaw")
-
     @derived_reading(4)
     def getQuaternion(self) -> list[float]:
         """The orientation as a quaternion [x, y, z, w] (of the rotation Rz(yaw) Ry(pitch)
@@ -373,8 +364,6 @@ class InertialUnit(_TableVector):
             cr * cp * sy - sr * sp * cy,
             cr * cp * cy + sr * sp * sy,
         ]
-
-    quaternion = webots_property("getQuaternion")
 
     def getNoise(self) -> float:
         """The noise of the readings (0: noise-free)."""
@@ -508,8 +497,6 @@ class TouchSensor(_ScalarSensor):
     def getType(self) -> int:
         """:data:`BUMPER`."""
         return self.BUMPER
-
-    type = webots_property("getType")
 
     def getLookupTable(self) -> list[float]:
         """The empty table of a bumper."""

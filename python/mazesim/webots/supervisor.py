@@ -63,7 +63,7 @@ from mazesim.webots.solids import (
     world_objects,
 )
 from mazesim.webots.supervisor_refusal import _refuse_supervisor
-from mazesim.webots.webots_api import NotSimulated, webots_property
+from mazesim.webots.webots_api import NotSimulated
 from mazesim.webots.world_save import with_fields
 
 __all__ = ["Field", "Node", "Supervisor"]
@@ -418,8 +418,6 @@ class Node(NotSimulated):
     def getId(self) -> int:
         """The node's unique id."""
         return self._id
-
-    id = webots_property("getId")
 
     def getDef(self) -> str:
         """The node's DEF name (empty if it has none)."""
@@ -1011,8 +1009,6 @@ class Supervisor(Robot):
         is closed while paused), with exit status 0."""
         self._mode = int(mode)
         self._simulation.paused = self._mode == self.SIMULATION_MODE_PAUSE
-
-    simulation_mode = webots_property("simulationGetMode", "simulationSetMode")
 
     def setLabel(self, *args: Any) -> None:
         """Accepted; there is no 3D view to draw labels on."""

@@ -102,6 +102,12 @@ def webots_property(getter: str, setter: str = "") -> Any:
     return property(read, write, doc=f"Webots' property: {'; '.join(said)}.")
 
 
+def _defined(cls: type, name: str) -> bool:
+    """Whether ``cls`` or a base class defines ``name`` (a property that is only assigned, when
+    it is read)."""
+    return any(name in vars(klass) for klass in cls.__mro__)
+
+
 def _not_simulated(owner: str, name: str, call: str = "()") -> Callable[..., None]:
     def not_simulated(*args: Any, **kwargs: Any) -> None:
         print(f"Error: {owner}.{name}{call} is not available in mazesim.", file=sys.stderr)
@@ -126,7 +132,9 @@ class NotSimulated:
     def __getattr__(self, name: str) -> Any:
         owner = webots_class(type(self))
         found = webots_classes()[owner] if owner else None
-        if found is None or not found.has(name):
+        if found is None or not found.has(name) or _defined(type(self), name):
+            # (A property of the class that is only assigned, as Webots' ``Motor.force``, is
+            # not read: Webots raises here too.)
             raise AttributeError(
                 f"{_shown(type(self).__name__)} object has no attribute {_shown(name)}",
                 name=name,
