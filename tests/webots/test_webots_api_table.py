@@ -161,3 +161,13 @@ def test_assigning_a_webots_property_calls_its_setter(robot: Any) -> None:
     assert sensor.getSamplingPeriod() == 64
     with pytest.raises(AttributeError):
         motor.force  # noqa: B018  (write-only in Webots)
+
+
+def test_a_camera_fov_assigned_says_what_webots_says(
+    robot: Any, capsys: pytest.CaptureFixture[str]
+) -> None:
+    camera = robot.getDevice("camera")
+    before = camera.fov
+    camera.fov = 0.5  # Webots' property calls setFov: the e-puck's camera has no zoom
+    assert camera.fov == before == camera.getFov()
+    assert "can only be called on a zoom camera" in capsys.readouterr().err

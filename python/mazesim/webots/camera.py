@@ -37,7 +37,6 @@ from mazesim.webots.rays import FloorPaint, WallBoxes
 from mazesim.webots.recognition import CameraPose, RecognisedObject, recogniser_of
 from mazesim.webots.robot_frames import Mount, RobotShape
 from mazesim.webots.walls_now import WallsNow
-from mazesim.webots.webots_api import webots_property
 
 if TYPE_CHECKING:
     from mazesim.webots.simulation import RobotSimulation
@@ -739,8 +738,6 @@ class Camera(_Sensor):
     def getFov(self) -> float:
         """Horizontal field of view in radians."""
         return self._view.fov
-
-    fov = webots_property("getFov")
 
     def setFov(self, fov: float) -> None:
         """Fixed in the e-puck's camera (no zoom): Webots' error, the field stays."""
