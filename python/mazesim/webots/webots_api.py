@@ -17,7 +17,7 @@ import sys
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from mazesim._toml import load_toml
 from mazesim.errors import _shown
@@ -129,18 +129,21 @@ class NotSimulated:
             if not hasattr(cls, name) and (getter or setter):
                 setattr(cls, name, webots_property(getter, setter))
 
-    def __getattr__(self, name: str) -> Any:
-        owner = webots_class(type(self))
-        found = webots_classes()[owner] if owner else None
-        if found is None or not found.has(name) or _defined(type(self), name):
-            # (A property of the class that is only assigned, as Webots' ``Motor.force``, is
-            # not read: Webots raises here too.)
-            raise AttributeError(
-                f"{_shown(type(self).__name__)} object has no attribute {_shown(name)}",
-                name=name,
-                obj=self,
-            )
-        if name in found.methods:
-            return _not_simulated(type(self).__name__, name)
-        _not_simulated(type(self).__name__, name, "")()
-        return None
+    if not TYPE_CHECKING:  # at run time only: mypy keeps checking mazesim's own names
+
+        def __getattr__(self, name: str) -> Any:
+            # Private and special names (copy's, pickle's, numpy's probes) are no Webots name.
+            owner = None if name.startswith("_") else webots_class(type(self))
+            found = webots_classes()[owner] if owner else None
+            if found is None or not found.has(name) or _defined(type(self), name):
+                # (A property of the class that is only assigned, as Webots' ``Motor.force``, is
+                # not read: Webots raises here too.)
+                raise AttributeError(
+                    f"{_shown(type(self).__name__)} object has no attribute {_shown(name)}",
+                    name=name,
+                    obj=self,
+                )
+            if name in found.methods:
+                return _not_simulated(type(self).__name__, name)
+            _not_simulated(type(self).__name__, name, "")()
+            return None
