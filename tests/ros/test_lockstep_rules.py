@@ -5,6 +5,8 @@ bridge nobody drives gives up."""
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
+from typing import Any
 
 import pytest
 
@@ -19,6 +21,7 @@ from mazesim.ros.lockstep import (
     TimerHold,
     UnansweredState,
 )
+from ros_support import needs_ros
 
 STEP_NS = 32_000_000
 
@@ -272,3 +275,79 @@ def test_late_connections_with_no_command_writer_get_the_state_after_the_writer_
     assert late.hand_over([("pose", "pose@0")], set(), False, now=connected + 1.9) == 0
     assert late.hand_over([("pose", "pose@0")], set(), False, now=connected + 2.0) == 1
     assert sent == ["pose@0"]
+
+
+class _Connection:
+    """A stand-in for rospy's connection: what was written to it, and rospy's count of it."""
+
+    def __init__(self) -> None:
+        self.written: list[str] = []
+        self.stat_num_msg = 0
+
+
+def _sending_to(c: _Connection) -> Callable[[str], None]:
+    # As rospy's publisher hands its listener: a closure over the connection ``c``.
+    def publish_single(message: str) -> None:
+        c.written.append(message)
+        c.stat_num_msg += 1
+
+    return publish_single
+
+
+def test_a_connection_that_had_the_state_before_its_listener_heard_of_it_is_not_sent_it_again() -> (
+    None
+):
+    from mazesim.ros.latched import LateConnections
+
+    # rospy adds the connection, the bridge publishes a step to it and notes the topic published,
+    # then rospy tells the listener of the connection: it has the state already.
+    late = LateConnections(quiet_s=0.5, lead_s=0.25, writer_wait_s=2.0)
+    had, fresh = _Connection(), _Connection()
+    _sending_to(had)("odom@0")  # the step's publish reached it
+    late.published("odom")
+    late.peer_subscribe("odom", None, _sending_to(had))
+    late.peer_subscribe("odom", None, _sending_to(fresh))
+    connected = late._last_connected
+    assert late.hand_over([("odom", "odom@0")], set(), True, now=connected + 0.5) == 1
+    assert had.written == ["odom@0"] and fresh.written == ["odom@0"]
+    # A reading's connection that has had a newer reading by its lead is left out too.
+    scan = _Connection()
+    late.peer_subscribe("scan", None, _sending_to(scan))
+    connected = late._last_connected
+    state = [("odom", "odom@1"), ("scan", "scan@1")]
+    assert late.hand_over(state, {"scan"}, True, now=connected + 0.5) == 1
+    _sending_to(scan)("scan@2")
+    late.hand_over(state, {"scan"}, True, now=connected + 1.0)
+    assert scan.written == ["scan@2"]
+
+
+@needs_ros
+def test_the_connection_is_read_from_rospys_own_publisher() -> None:
+    # The mechanism relies on rospy's publisher handing its listener a closure over the
+    # connection and counting the messages written to it: checked on rospy itself.
+    import rospy.topics
+    from rospy.impl.transport import OUTBOUND, Transport
+    from std_msgs.msg import String
+
+    from mazesim.ros.latched import _connection_of, _had_a_message
+
+    class Connection(Transport):  # type: ignore[misc]
+        def write_data(self, data: bytes) -> None:
+            self.stat_num_msg += 1
+
+        def fileno(self) -> None:
+            return None
+
+    impl = rospy.topics._PublisherImpl("/odom", String)
+    handed: list[Any] = []
+
+    class Listener:
+        def peer_subscribe(self, topic: str, publish_all: Any, publish_one: Any) -> None:
+            handed.append(publish_one)
+
+    impl.add_subscriber_listener(Listener())
+    connection = Connection(OUTBOUND, "probe")
+    impl.add_connection(connection)
+    assert _connection_of(handed[0]) is connection and not _had_a_message(connection)
+    impl.publish(String(data="step"))
+    assert _had_a_message(connection)

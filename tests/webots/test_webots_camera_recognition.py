@@ -287,6 +287,47 @@ def test_an_object_across_the_edge_of_the_view_is_recognised_clipped_to_it() -> 
     assert Recogniser(SETTINGS, [wide], {}).recognise(camera, None) == []
 
 
+def tall_cylinder(x: float, y: float, rounded: bool = True) -> Any:
+    """A 0.3 m tall cylinder of radius 0.05 standing at (x, y) (its box 0.1 x 0.1 x 0.3, its
+    centre 0.15 m up), or (``rounded`` False) a box of that size."""
+    return {
+        "line": 5,
+        "id": 4,
+        "model": "pillar",
+        "colors": [1.0, 0.0, 1.0],
+        "origin": [x, y, 0.0],
+        "yaw": 0.0,
+        "box_center": [0.0, 0.0, 0.15],
+        "box_size": [0.1, 0.1, 0.3],
+        "round": rounded,
+    }
+
+
+def test_a_round_object_partly_out_of_view_is_measured_from_its_centre_as_webots_does() -> None:
+    # Webots (WbObjectDetection::isWithinBounds, its Sphere/Cylinder/Capsule branch): the
+    # centre's distance d to each side of the field of view against half the width or height;
+    # the part beyond, half - d, comes off the size and half of it off the position.
+    camera = CameraPose(0.0, 0.0, 0.028, 0.0, 0.0, 52, 39, 0.84)
+    up = math.tan(0.42) * 39 / 52
+    # 0.131 m ahead its centre is 0.122 m above the camera: d = (up * 0.131 - 0.122) /
+    # sqrt(1 + up^2) = -0.0741 from the top side, 0.1573 (more than 0.15) from the bottom one.
+    (seen,) = Recogniser(SETTINGS, [tall_cylinder(0.131, 0.0)], {}).recognise(camera, None)
+    top = 0.15 - (up * 0.131 - 0.122) / math.sqrt(1.0 + up * up)
+    assert seen.position == pytest.approx((0.131, 0.0, 0.122 - top / 2.0), abs=1e-12)
+    assert seen.position[2] == pytest.approx(0.00996, abs=1e-5)  # the course lab's stop, 0.01
+    assert seen.size == pytest.approx((0.1, 0.3 - top), abs=1e-12)
+    # A box of that size is clipped at its corners instead: higher, as mazesim had the cylinder.
+    (boxed,) = Recogniser(SETTINGS, [tall_cylinder(0.131, 0.0, False)], {}).recognise(camera, None)
+    assert boxed.position[2] == pytest.approx(0.01631, abs=1e-5)
+    # Its centre beyond the left side by more than half its width: out of view, where a box's
+    # near corners still lie across the view.
+    across = math.tan(0.42)
+    beyond = (across * 0.131 - 0.12) / math.sqrt(1.0 + across * across)
+    assert beyond < -0.05
+    assert Recogniser(SETTINGS, [tall_cylinder(0.131, 0.12)], {}).recognise(camera, None) == []
+    assert Recogniser(SETTINGS, [tall_cylinder(0.131, 0.12, False)], {}).recognise(camera, None)
+
+
 def test_a_world_before_r2022a_gives_positions_in_the_old_camera_frame(tmp_path: Path) -> None:
     # y up, the e-puck facing -z: a box 0.3 m ahead, another 0.3 m to its right (out of view).
     text = (

@@ -25,6 +25,13 @@ the connections waiting get the state once a command writer is connected to the 
 :data:`WRITER_WAIT_S` after the last connection when none comes (a recorder or ``rostopic echo``
 alone). The publishers still say they are latching (the ``latching`` connection header), so
 ``rosbag`` records them as latched topics.
+
+rospy adds a connection to its publisher before it tells the listener of it: a state published
+in between reaches the connection, and the connection then waits for that state again. So a
+connection that has had any message on its topic by the time of the hand-over (rospy's count of
+messages written to it, ``stat_num_msg``) is not sent the state: it has that state or a newer
+one. rospy hands the listener a function sending to the connection alone (``publish_single``,
+a closure over the connection ``c``); the connection is read from that closure.
 """
 
 from __future__ import annotations
@@ -43,6 +50,27 @@ WRITER_WAIT_S = 2.0
 #: Seconds between the state's motion and its sensors' readings, handed to late connections.
 LEAD_S = 0.25
 
+#: A connection waiting: its topic, the function sending to it alone, and rospy's connection
+#: (None when it cannot be told).
+_Waiting = tuple[str, Callable[[Any], None], Any]
+
+
+def _connection_of(publish_one: Any) -> Any:
+    """rospy's connection that ``publish_one`` sends to (the ``c`` of its closure), or None."""
+    code = getattr(publish_one, "__code__", None)
+    cells = getattr(publish_one, "__closure__", None) or ()
+    if code is None:
+        return None
+    for name, cell in zip(code.co_freevars, cells, strict=False):
+        if name == "c":
+            return cell.cell_contents
+    return None
+
+
+def _had_a_message(connection: Any) -> bool:
+    """Whether rospy has written a message to ``connection`` (its ``stat_num_msg``)."""
+    return bool(getattr(connection, "stat_num_msg", 0))
+
 
 class LateConnections:
     """The connections of the bridge's state topics that have not had the state yet.
@@ -60,10 +88,10 @@ class LateConnections:
         self.writer_wait_s = writer_wait_s
         self._lock = threading.Lock()
         #: The topic and the send function of each connection waiting, in connection order.
-        self._waiting: list[tuple[str, Callable[[Any], None]]] = []
+        self._waiting: list[_Waiting] = []
         self._last_connected = -float("inf")
         #: The connections of the sensors' topics waiting for the second part, and when.
-        self._sensing: list[tuple[str, Callable[[Any], None]]] = []
+        self._sensing: list[_Waiting] = []
         self._sensing_at = float("inf")
         #: Connections handed the state so far.
         self.handed = 0
@@ -71,7 +99,7 @@ class LateConnections:
     def peer_subscribe(self, topic: str, publish_all: Any, publish_one: Any) -> None:
         """rospy: a subscription of ``topic`` connected; ``publish_one`` sends to it alone."""
         with self._lock:
-            self._waiting.append((topic, publish_one))
+            self._waiting.append((topic, publish_one, _connection_of(publish_one)))
             self._last_connected = time.monotonic()
 
     def peer_unsubscribe(self, topic: str, connections: int) -> None:
@@ -98,26 +126,28 @@ class LateConnections:
         passed without one: the motion first, the topics of ``sensing`` (the sensors'
         readings) :data:`LEAD_S` after the last motion handed over, so that a node's odometry
         callback has run before its scan callback (each connection's messages are taken on a
-        thread of its own).
-        Returns how many connections it sent to."""
+        thread of its own). A connection that has had a message on its topic meanwhile is left
+        out. Returns how many connections it sent to."""
         now = time.monotonic() if now is None else now
         state = list(state)
         with self._lock:
-            waiting: list[tuple[str, Callable[[Any], None]]] = []
+            waiting: list[_Waiting] = []
             wait_s = self.quiet_s if writer_connected else self.writer_wait_s
             if self._waiting and now - self._last_connected >= wait_s:
                 waiting, self._waiting = self._waiting, []
                 # Every reading waiting goes LEAD_S after the last motion handed over.
                 self._sensing += [entry for entry in waiting if entry[0] in sensing]
                 self._sensing_at = now + self.lead_s
-            sensing_due: list[tuple[str, Callable[[Any], None]]] = []
+            sensing_due: list[_Waiting] = []
             if self._sensing and now >= self._sensing_at:
                 sensing_due, self._sensing = self._sensing, []
+        waiting = [entry for entry in waiting if not _had_a_message(entry[2])]
+        sensing_due = [entry for entry in sensing_due if not _had_a_message(entry[2])]
         for entries, part in ((waiting, False), (sensing_due, True)):
             for topic, message in state:
                 if (topic in sensing) != part:
                     continue
-                for waiting_topic, publish_one in entries:
+                for waiting_topic, publish_one, _ in entries:
                     if waiting_topic == topic:
                         publish_one(message)
         self.handed += len(waiting)

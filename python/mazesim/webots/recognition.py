@@ -14,8 +14,12 @@ or the box across it) and within ``maxRange``, and (``occlusion`` 1 or 2) whose 
 from the camera reaches before a wall of the 2D world (where a supervisor moved it) or another
 robot's body does, other than the object's own walls and body.
 Of more than ``maxObjects`` it keeps the biggest on the image. Each object's position and size
-are those of its box in the camera's frame, clipped to the field of view; its position and size
-on the image project the box's corners as Webots' planar camera does
+are those of its box in the camera's frame, clipped to the field of view as Webots clips them
+(``WbObjectDetection::isWithinBounds``): a Box's corners are brought into the field of view; a
+round object (Sphere, Cylinder or Capsule) is measured from its centre's distance to each side of
+the field of view, the part beyond a side taken off its size and half of it off its position, and
+is out of view once its centre lies beyond a side by more than half its size. Its position and
+size on the image project the box's corners as Webots' planar camera does
 (``src/webots/nodes/WbCamera.cpp``, ``WbObjectDetection.cpp``). The camera frame is Webots'
 since R2022a, x forward, y left, z up; for a world of an earlier release, x right, y up, z
 backward (the object ahead has a negative z). Robots follow their live pose, a Solid that holds
@@ -545,7 +549,10 @@ class Recogniser:
             for w in (-1.0, 1.0)
         ]
         local = [_in_camera(p, camera) for p in corners]
-        bounds = _clipped_bounds(local, camera)
+        if thing["round"]:
+            bounds = _round_bounds(_in_camera(centre, camera), local, camera)
+        else:
+            bounds = _clipped_bounds(local, camera)
         if bounds is None:
             return None
         low, high = bounds
@@ -708,6 +715,50 @@ def _clipped_bounds(
     points = ahead + behind
     low = [min(p[k] for p in points) for k in range(3)]
     high = [max(p[k] for p in points) for k in range(3)]
+    return low, high
+
+
+def _round_bounds(
+    centre: tuple[float, float, float],
+    corners: list[tuple[float, float, float]],
+    camera: CameraPose,
+) -> tuple[list[float], list[float]] | None:
+    """The box (lowest and highest x, y, z, camera frame) of a round object with its
+    ``centre`` and its box's ``corners`` in the camera's frame, as Webots measures a Sphere,
+    Cylinder or Capsule (``WbObjectDetection::isWithinBounds``): for each side of the field of
+    view (right, bottom, left, top), the signed distance ``d`` of the centre from that side
+    (positive inside) against half the box's width (right, left) or height (bottom, top):
+    beyond by more than that half, the object is out of view (None); within less than it, the
+    part ``half - d`` is beyond that side. With a horizontal field of view of 90 degrees or
+    less, those parts come off the width and height and half of each off the position, towards
+    the view."""
+    low = [min(p[k] for p in corners) for k in range(3)]
+    high = [max(p[k] for p in corners) for k in range(3)]
+    size = [high[k] - low[k] for k in range(3)]
+    x, y, z = centre
+    across, up = _half_tangents(camera)
+    outside = []
+    # The right, bottom, left and top sides: their tangent, the centre's offset towards the
+    # inside, and the half size measured against them.
+    for tangent, offset, half in (
+        (across, y, size[1] / 2.0),
+        (up, z, size[2] / 2.0),
+        (across, -y, size[1] / 2.0),
+        (up, -z, size[2] / 2.0),
+    ):
+        d = (tangent * x + offset) / math.sqrt(1.0 + tangent * tangent)
+        if d < -half:
+            return None
+        outside.append(half - d if d < half else 0.0)
+    position = [x, y, z]
+    if camera.fov <= math.pi / 2.0:
+        right, bottom, left, top = outside
+        size[1] -= right + left
+        size[2] -= bottom + top
+        position[1] += 0.5 * (right - left)
+        position[2] += 0.5 * (bottom - top)
+    low = [position[k] - size[k] / 2.0 for k in range(3)]
+    high = [position[k] + size[k] / 2.0 for k in range(3)]
     return low, high
 
 
