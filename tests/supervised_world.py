@@ -42,6 +42,23 @@ DEF EPUCK E-puck { translation 0 0 0 supervisor TRUE controller "<extern>" }
 """
 
 
+#: A controller that notes its front light sensor's reading (ls0, 4095 in the dark) at every
+#: step, and writes them to ``readings.json`` in its folder at its end.
+LIGHT_WATCHER = """import json
+
+from controller import Robot
+
+robot = Robot()
+ls0 = robot.getDevice("ls0")
+ls0.enable(32)
+readings = []
+while robot.step(32) != -1:
+    readings.append(ls0.getValue())
+with open("readings.json", "w") as out:
+    json.dump(readings, out)
+"""
+
+
 def cruising_controller(speed: float, steps: int | None = None) -> str:
     """The source of a Python controller that drives both wheels at ``speed`` rad/s under
     velocity control, for ``steps`` steps then returns (None: until the run's end)."""

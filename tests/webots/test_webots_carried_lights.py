@@ -13,7 +13,7 @@ import pytest
 from mazesim.webots.lights import Light, carried, irradiance
 from mazesim.webots.lockstep import run_world
 from mazesim.webots.scene import read_scene
-from supervised_world import cruising_controller, project_of
+from supervised_world import LIGHT_WATCHER, cruising_controller, project_of
 
 #: A lamp on the floor's plane, and a beacon e-puck holding a PointLight 5 cm above its centre
 #: that drives 5 rad/s straight ahead (+x), towards a watcher 0.5 m ahead that stands still.
@@ -33,20 +33,7 @@ E-puck { translation 0.5 0 0 rotation 0 0 1 3.14159 name "watcher" controller "w
 
 BEACON = cruising_controller(5.0)
 
-#: Notes its front light sensor's readings (ls0, facing the beacon) at its first and last steps.
-WATCHER = """import json
-
-from controller import Robot
-
-robot = Robot()
-ls0 = robot.getDevice("ls0")
-ls0.enable(32)
-readings = []
-while robot.step(32) != -1:
-    readings.append(ls0.getValue())
-with open("readings.json", "w") as out:
-    json.dump(readings, out)
-"""
+WATCHER = LIGHT_WATCHER
 
 
 def test_a_light_a_robot_holds_is_its_robots_and_is_carried_with_it() -> None:

@@ -18,10 +18,11 @@ messages are pickled tuples). The protocol, from the controller's side:
   reads without asking, until it moves its robot itself), the world's ``last_reset``
   (:class:`~mazesim.webots.simulation.WorldReset`) and the ``customData`` a supervisor last
   wrote into the robot's node (``Fleet.custom_data``) and how many times a supervisor has
-  changed the walls (``Fleet.wall_changes``), or ``("ok", (True, None))`` without a step
-  when a supervisor has quit the simulation (``Robot.step`` then returns -1); a step may also
-  carry the robot's own ``customData`` written since the last one, and the wheel motors'
-  commands when they changed since the last step sent them (:func:`held_commands`);
+  changed the walls (``Fleet.wall_changes``) and set a light's field (``light_changes``), or
+  ``("ok", (True, None))`` without a step when a supervisor has quit the simulation
+  (``Robot.step`` then returns -1); a step may also carry the robot's own ``customData``
+  written since the last one, and the wheel motors' commands when they changed since the last
+  step sent them (:func:`held_commands`);
 - ``("done", summary)``: the controller has ended (a dict of :class:`ControllerSummary`'s
   fields); no answer. From then on the robot's wheels turn as its motors' last commands have
   them (:mod:`mazesim.webots.last_commands`), as in Webots. A process that ends without this
@@ -179,6 +180,9 @@ class RemoteSimulator(Remote):
         #: How many times a supervisor has changed the world's walls, as the last step's
         #: answer told it (:class:`~mazesim.webots.walls_now.WallsNow`).
         self.wall_changes = 0
+        #: How many times a supervisor has set a light's field (or a reset undid it), as the
+        #: last step's answer told it (``RobotSimulation.lights_now``).
+        self.light_changes = 0
         #: The robot's own ``setCustomData`` since its last step, which goes with the next.
         self.own_custom_data: str | None = None
         #: The wheel motors' commands the next step sends (:meth:`hold_wheel_commands`), and
@@ -234,6 +238,7 @@ class RemoteSimulator(Remote):
         self.last_reset = self._after_step.pop("last_reset", self.last_reset)
         self.custom_data = self._after_step.pop("custom_data", self.custom_data)
         self.wall_changes = self._after_step.pop("wall_changes", self.wall_changes)
+        self.light_changes = self._after_step.pop("light_changes", self.light_changes)
         return bool(over)
 
 

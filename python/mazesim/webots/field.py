@@ -268,6 +268,7 @@ class Field(NotSimulated):
             node._set_field_pose(x, y, node._field_pose()[2])
         else:
             node._place(translation=(x, y, z))
+            node._tell_field("translation", [float(v) for v in vector])
 
     def c_sf_rotation(self) -> list[float] | None:
         """The node's rotation as axis and angle (the robot's is live: [0, 0, 1, yaw], the yaw in
@@ -295,6 +296,7 @@ class Field(NotSimulated):
             node._set_field_pose(x, y, _yaw_of_rotation([ax, ay, az, angle]))
         else:
             node._place(rotation=(ax, ay, az, angle))
+            node._tell_field("rotation", [float(v) for v in rotation])
 
     def _numbers(self, function: str, types: tuple[int, ...]) -> list[float] | None:
         if self._type not in types or self._name not in self._node._numbers:
@@ -333,6 +335,7 @@ class Field(NotSimulated):
             self._wrong(function)
             return
         self._node._numbers[self._name] = [float(v) for v in values]
+        self._node._tell_field(self._name, list(self._node._numbers[self._name]))
 
     def setSFInt32(self, value: int) -> None:
         """Records a new value of an integer field."""
@@ -364,6 +367,7 @@ class Field(NotSimulated):
             self._wrong("set_sf_bool")
             return
         self._node._flags[self._name] = bool(flag)
+        self._node._tell_field(self._name, bool(flag))
 
     def c_sf_string(self) -> str | None:
         """The value of a string field (``name``, ``customData``, ``controller``)."""

@@ -26,13 +26,21 @@ light) moves with the robot, as any node under a Solid does in Webots: :func:`ca
 where the robot stands now. Walls do not
 shade (Webots' LightSensor ``occlusion`` defaults to FALSE). A world without any light node
 gets :data:`DEFAULT_IRRADIANCE`; one whose lights are all off gets none.
+
+A supervisor that sets a light's field (``location``, ``direction``, ``on``, ``intensity``,
+``color``, ``attenuation``, ``radius``...; a lamp's ``spotLightIntensity``) changes what every
+robot's light sensors receive, as in Webots: the world file's light nodes are read once into
+:class:`LightSource` records (the fields as the file gives them, where the node stands), and the
+lights are made of them and the fields a supervisor set since (:func:`lit`), by the line of
+each light's node.
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Iterable, Iterator, Sequence
-from dataclasses import dataclass, replace
+from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
+from dataclasses import dataclass, field, replace
+from typing import Any
 
 from mazesim.webots.frames import SLOT_ORIGINS, WORLD_FRAME, Frame, nue_to_enu, placed
 from mazesim.webots.proto.syntax import Field, Node, first_value
@@ -40,9 +48,13 @@ from mazesim.webots.proto.syntax import Field, Node, first_value
 __all__ = [
     "BACKGROUND_LIGHTS",
     "DEFAULT_IRRADIANCE",
+    "LIGHT_TYPES",
     "Light",
+    "LightSource",
     "carried",
     "irradiance",
+    "light_sources",
+    "lit",
     "read_lights",
 ]
 
@@ -53,6 +65,25 @@ DEFAULT_IRRADIANCE = 1.5
 _LIGHT_TYPES = ("PointLight", "SpotLight", "DirectionalLight")
 #: The PROTOs that hold a light (see the module's docstring).
 _LIGHT_PROTOS = ("TexturedBackgroundLight", "ConstructionLamp")
+#: The node types whose fields make a light: a supervisor's edit of one changes the lights.
+LIGHT_TYPES = frozenset(_LIGHT_TYPES + _LIGHT_PROTOS)
+#: The fields of numbers a light is made of, with how many numbers each holds.
+_LIGHT_FIELDS = {
+    "location": 3,
+    "direction": 3,
+    "intensity": 1,
+    "ambientIntensity": 1,
+    "color": 3,
+    "attenuation": 3,
+    "radius": 1,
+    "cutOffAngle": 1,
+    "beamWidth": 1,
+    "luminosity": 1,
+    "translation": 3,
+    "rotation": 4,
+    "spotLightIntensity": 1,
+    "spotLightRadius": 1,
+}
 
 #: The DirectionalLight of Webots' ``TexturedBackgroundLight`` PROTO for each ``texture``: its
 #: direction as the PROTO writes it (y up; in an ENU world the PROTO turns (a, b, c) into
@@ -121,17 +152,65 @@ def _unit(x: float, y: float, z: float) -> tuple[float, float, float]:
     return x / norm, y / norm, z / norm
 
 
-def _numbers(light: Node, name: str, default: tuple[float, ...]) -> tuple[float, ...]:
-    """A light's field of ``len(default)`` numbers, ``default`` where the file gives none."""
-    return first_value([light], name, lambda item: item.numbers(len(default))) or default
+def _given_numbers(node: Node, name: str, count: int) -> tuple[float, ...] | None:
+    """A node's field of ``count`` numbers as the file gives it, None where it gives none."""
+    found = first_value([node], name, lambda item: item.numbers(count))
+    return None if found is None else tuple(found)
 
 
-def _background_light(light: Node, nue: bool) -> Light | None:
+def _node_numbers(node: Node, name: str, default: tuple[float, ...]) -> tuple[float, ...]:
+    """A node's field of ``len(default)`` numbers, ``default`` where the file gives none."""
+    return first_value([node], name, lambda item: item.numbers(len(default))) or default
+
+
+@dataclass(frozen=True)
+class LightSource:
+    """A light node of the world file, as :func:`lit` makes a :class:`Light` of it.
+
+    Attributes:
+        line: The line of its node type in the world file (a supervisor's node names it so).
+        type_name: ``PointLight``, ``SpotLight``, ``DirectionalLight`` or a PROTO holding one.
+        holder: The frame of the node that holds it (its parents' poses composed).
+        carrier: The line of the robot node that holds it, or None.
+        numbers: Its fields of numbers (:data:`_LIGHT_FIELDS`) the file gives.
+        on: Its ``on`` field as the file gives it, or None.
+        texture: A ``TexturedBackgroundLight``'s ``texture``, or None.
+    """
+
+    line: int
+    type_name: str
+    holder: Frame
+    carrier: int | None = None
+    numbers: Mapping[str, tuple[float, ...]] = field(default_factory=dict)
+    on: bool | None = None
+    texture: str | None = None
+
+
+class _Fields:
+    """A light's fields: those a supervisor set (``edits``, by field name), else the file's."""
+
+    def __init__(self, source: LightSource, edits: Mapping[str, Any]) -> None:
+        self._source = source
+        self._edits = edits
+
+    def numbers(self, name: str, default: tuple[float, ...]) -> tuple[float, ...]:
+        edited = self._edits.get(name)
+        if isinstance(edited, (list, tuple)) and len(edited) >= len(default):
+            return tuple(float(v) for v in edited[: len(default)])
+        return self._source.numbers.get(name, default)
+
+    def on(self) -> bool:
+        edited = self._edits.get("on")
+        if isinstance(edited, bool):
+            return edited
+        return self._source.on is not False
+
+
+def _background_light(fields: _Fields, texture: str | None, nue: bool) -> Light | None:
     """The DirectionalLight of a ``TexturedBackgroundLight``, or None when it is off."""
-    texture = first_value([light], "texture", Field.string) or "mountains"
     default = ((0.0, -1.0, 0.0), 1.0, 1.0, True)
-    (x, y, z), intensity, color, on = BACKGROUND_LIGHTS.get(texture, default)
-    (luminosity,) = _numbers(light, "luminosity", (1.0,))
+    (x, y, z), intensity, color, on = BACKGROUND_LIGHTS.get(texture or "mountains", default)
+    (luminosity,) = fields.numbers("luminosity", (1.0,))
     if not on:
         return None
     direction = nue_to_enu(x, y, z) if nue else (z, x, y)
@@ -152,17 +231,17 @@ def _direction(frame: Frame, d: tuple[float, ...]) -> tuple[float, float, float]
     return x, y, z
 
 
-def _construction_lamp(lamp: Node, holder: Frame, nue: bool) -> Light:
+def _construction_lamp(fields: _Fields, holder: Frame, nue: bool) -> Light:
     """The SpotLight of a ``ConstructionLamp`` placed in ``holder``, by the lamp's own pose."""
     frame = placed(
         holder,
-        _numbers(lamp, "translation", (0.0, 0.0, 0.07)),
-        _numbers(lamp, "rotation", (0.0, 0.0, 1.0, 0.0)),
+        fields.numbers("translation", (0.0, 0.0, 0.07)),
+        fields.numbers("rotation", (0.0, 0.0, 1.0, 0.0)),
     )
     location = _point(frame, _LAMP_LOCATION)
     beam = _direction(frame, (1.0, 0.0, 0.0))
-    (intensity,) = _numbers(lamp, "spotLightIntensity", (2.0,))
-    (radius,) = _numbers(lamp, "spotLightRadius", (100.0,))
+    (intensity,) = fields.numbers("spotLightIntensity", (2.0,))
+    (radius,) = fields.numbers("spotLightRadius", (100.0,))
     return Light(
         nue_to_enu(*location) if nue else location,
         None,
@@ -191,7 +270,7 @@ def _placed_nodes(
         if node.use_name is not None:
             continue
         yield node, holder, carrier
-        offset = _numbers(node, "translation", (0.0, 0.0, 0.0))
+        offset = _node_numbers(node, "translation", (0.0, 0.0, 0.0))
         turn = first_value([node], "rotation", lambda item: item.numbers(4))
         frame = placed(holder, offset, turn)
         held = carrier if carrier is not None else carrier_of(node)
@@ -210,68 +289,113 @@ def _slot_frame(frame: Frame, node: Node, field_name: str) -> Frame:
     return frame if origin is None else placed(frame, origin)
 
 
+def light_sources(
+    tree: Iterable[Node],
+    nue: bool = False,
+    carrier_of: Callable[[Node], int | None] = lambda node: None,
+    line_of: Callable[[Node], int] = lambda node: 0,
+) -> list[LightSource] | None:
+    """The light nodes of a world file, each with the frame its parents' poses place it in;
+    None when it has no light node.
+
+    Args:
+        tree: The nodes at the top of the world file (their children are walked).
+        nue: Whether the file is in Webots' old NUE frame (y up): an E-puck's slots are then
+            where its node puts them.
+        carrier_of: The line of a robot node (the lights it holds move with it), None for
+            any other node.
+        line_of: The line of a node's type in the world file.
+    """
+    sources: list[LightSource] = []
+    for light, holder, carrier in _placed_nodes(tree, carrier_of, slots=not nue):
+        if light.type_name not in LIGHT_TYPES:
+            continue
+        numbers = {
+            name: found
+            for name, count in _LIGHT_FIELDS.items()
+            if (found := _given_numbers(light, name, count)) is not None
+        }
+        sources.append(
+            LightSource(
+                line_of(light),
+                light.type_name,
+                holder,
+                carrier,
+                numbers,
+                first_value([light], "on", Field.flag),
+                first_value([light], "texture", Field.string),
+            )
+        )
+    return sources if sources else None
+
+
+def lit(
+    sources: Sequence[LightSource] | None,
+    nue: bool = False,
+    edits: Mapping[int, Mapping[str, Any]] | None = None,
+) -> list[Light] | None:
+    """The lights of ``sources`` that are on, their fields as a supervisor set them
+    (``edits``: by the line of the light's node, each field's value by name) or else as the
+    file gives them; None when there is no light node (``sources`` None)."""
+    if sources is None:
+        return None
+    lights: list[Light] = []
+    for source in sources:
+        fields = _Fields(source, (edits or {}).get(source.line, {}))
+        made = _light(source, fields, nue)
+        if made is not None:
+            lights.append(made)
+    return lights
+
+
+def _light(source: LightSource, fields: _Fields, nue: bool) -> Light | None:
+    """The light a source makes with ``fields``, None when it is off."""
+    holder, carrier = source.holder, source.carrier
+    if source.type_name == "TexturedBackgroundLight":
+        return _background_light(fields, source.texture, nue)
+    if source.type_name == "ConstructionLamp":
+        return replace(_construction_lamp(fields, holder, nue), carrier=carrier)
+    if not fields.on():
+        return None
+    (intensity,) = fields.numbers("intensity", (1.0,))
+    (ambient,) = fields.numbers("ambientIntensity", (0.0,))
+    color = sum(fields.numbers("color", (1.0, 1.0, 1.0))) / 3.0
+    if source.type_name == "DirectionalLight":
+        x, y, z = _direction(holder, fields.numbers("direction", (0.0, 0.0, -1.0)))
+        direction = _unit(*(nue_to_enu(x, y, z) if nue else (x, y, z)))
+        return Light(None, direction, intensity, ambient, color=color, carrier=carrier)
+    x, y, z = _point(holder, fields.numbers("location", (0.0, 0.0, 0.0)))
+    a0, a1, a2 = fields.numbers("attenuation", (1.0, 0.0, 0.0))
+    (radius,) = fields.numbers("radius", (100.0,))
+    beam, cut_off, beam_width = None, math.pi, math.pi
+    if source.type_name == "SpotLight":
+        bx, by, bz = _direction(holder, fields.numbers("direction", (0.0, 0.0, -1.0)))
+        beam = _unit(*(nue_to_enu(bx, by, bz) if nue else (bx, by, bz)))
+        (cut_off,) = fields.numbers("cutOffAngle", (math.pi / 4,))
+        (beam_width,) = fields.numbers("beamWidth", (math.pi / 2,))
+    return Light(
+        nue_to_enu(x, y, z) if nue else (x, y, z),
+        None,
+        intensity=intensity,
+        ambient=ambient,
+        attenuation=(a0, a1, a2),
+        radius=radius,
+        beam=beam,
+        cut_off=cut_off,
+        beam_width=beam_width,
+        color=color,
+        carrier=carrier,
+    )
+
+
 def read_lights(
     tree: Iterable[Node],
     nue: bool = False,
     carrier_of: Callable[[Node], int | None] = lambda node: None,
 ) -> list[Light] | None:
     """The lights of a world file that are on, each placed by its parents' poses; None when
-    it has no light node.
-
-    Args:
-        tree: The nodes at the top of the world file (their children are walked).
-        nue: Whether the file is in Webots' old NUE frame (y up); positions are converted.
-        carrier_of: The line of a robot node (the lights it holds move with it), None for
-            any other node.
-    """
-    lights: list[Light] = []
-    declared = False
-    for light, holder, carrier in _placed_nodes(tree, carrier_of, slots=not nue):
-        if light.type_name not in _LIGHT_TYPES + _LIGHT_PROTOS:
-            continue
-        declared = True
-        if light.type_name == "TexturedBackgroundLight":
-            if (background := _background_light(light, nue)) is not None:
-                lights.append(background)
-            continue
-        if light.type_name == "ConstructionLamp":
-            lights.append(replace(_construction_lamp(light, holder, nue), carrier=carrier))
-            continue
-        if first_value([light], "on", Field.flag) is False:
-            continue
-        (intensity,) = _numbers(light, "intensity", (1.0,))
-        (ambient,) = _numbers(light, "ambientIntensity", (0.0,))
-        color = sum(_numbers(light, "color", (1.0, 1.0, 1.0))) / 3.0
-        if light.type_name == "DirectionalLight":
-            x, y, z = _direction(holder, _numbers(light, "direction", (0.0, 0.0, -1.0)))
-            direction = _unit(*(nue_to_enu(x, y, z) if nue else (x, y, z)))
-            lights.append(Light(None, direction, intensity, ambient, color=color, carrier=carrier))
-            continue
-        x, y, z = _point(holder, _numbers(light, "location", (0.0, 0.0, 0.0)))
-        a0, a1, a2 = _numbers(light, "attenuation", (1.0, 0.0, 0.0))
-        (radius,) = _numbers(light, "radius", (100.0,))
-        beam, cut_off, beam_width = None, math.pi, math.pi
-        if light.type_name == "SpotLight":
-            bx, by, bz = _direction(holder, _numbers(light, "direction", (0.0, 0.0, -1.0)))
-            beam = _unit(*(nue_to_enu(bx, by, bz) if nue else (bx, by, bz)))
-            (cut_off,) = _numbers(light, "cutOffAngle", (math.pi / 4,))
-            (beam_width,) = _numbers(light, "beamWidth", (math.pi / 2,))
-        lights.append(
-            Light(
-                nue_to_enu(x, y, z) if nue else (x, y, z),
-                None,
-                intensity=intensity,
-                ambient=ambient,
-                attenuation=(a0, a1, a2),
-                radius=radius,
-                beam=beam,
-                cut_off=cut_off,
-                beam_width=beam_width,
-                color=color,
-                carrier=carrier,
-            )
-        )
-    return lights if declared else None
+    it has no light node (:func:`light_sources` made into lights by :func:`lit`)."""
+    return lit(light_sources(tree, nue, carrier_of), nue)
 
 
 def carried(light: Light, start: Sequence[float], now: Sequence[float]) -> Light:

@@ -503,6 +503,16 @@ class Fleet:
         :meth:`~mazesim.webots.solids.WorldSolids.node_moves`)."""
         return self.solids.node_moves()
 
+    def edit_light(self, line: int, name: str, value: Any) -> None:
+        """Notes a supervisor's edit of a light's field (see
+        :meth:`~mazesim.webots.solids.WorldSolids.edit_light`); each robot is told with the
+        next step's answer (``light_changes``) and asks for the edits then."""
+        self.solids.edit_light(line, name, value)
+
+    def light_edits(self) -> dict[int, dict[str, Any]]:
+        """The fields supervisors set on light nodes, by the line of each light's node."""
+        return self.solids.light_edits()
+
     def move_node(self, line: int, from_pose: Any, to_pose: Any) -> None:
         """Moves what the node on ``line`` holds, in every simulator that holds the world's
         walls and bodies (see :meth:`~mazesim.webots.solids.WorldSolids.move_node`)."""
@@ -1125,6 +1135,7 @@ def _lockstep(
                             state["last_reset"] = fleet.last_reset(index)
                             state["custom_data"] = fleet.custom_data(index)
                             state["wall_changes"] = fleet.wall_changes
+                            state["light_changes"] = fleet.solids.light_changes
                         connections[index].send(("ok", (state is None, state)))
                     wheels.clear()
     finally:

@@ -12,7 +12,8 @@ E-puck.proto`` (R2022b on: the default controller is ``e-puck_avoid_obstacles``,
 channels 1, the camera 52 x 39 pixels with a 0.84 rad field of view; the E-puck.proto of Webots
 V8.5 declares the same default controller and radio channels, so worlds of every version share
 them), ``projects/objects/factory/containers/protos/WoodenBox.proto`` (size 0.6 m, mass 0,
-unlocked, from R2021b on).
+unlocked, from R2021b on); the light nodes' fields are those of Webots' reference manual
+(Light, PointLight, SpotLight, DirectionalLight).
 """
 
 from __future__ import annotations
@@ -117,7 +118,41 @@ _WOODEN_BOX = DeclaredFields(
     flags={"locked": False},
     floats=frozenset({"mass"}),
 )
+# The light nodes' fields (Webots' reference manual, Light, PointLight, SpotLight and
+# DirectionalLight): a supervisor moves, dims or switches off a light whose file leaves the
+# field out (mazesim.webots.lights reads the same defaults).
+_LIGHT_NUMBERS = {"ambientIntensity": [0.0], "color": [1.0, 1.0, 1.0], "intensity": [1.0]}
+_LIGHT_FLAGS = {"on": True, "castShadows": False}
+_LIGHT_FLOATS = frozenset({"ambientIntensity", "intensity", "radius", "beamWidth", "cutOffAngle"})
+_POINT_LIGHT = DeclaredFields(
+    numbers={
+        **_LIGHT_NUMBERS,
+        "attenuation": [1.0, 0.0, 0.0],
+        "location": [0.0, 0.0, 0.0],
+        "radius": [100.0],
+    },
+    flags=dict(_LIGHT_FLAGS),
+    floats=_LIGHT_FLOATS,
+)
+_SPOT_LIGHT = DeclaredFields(
+    numbers={
+        **_POINT_LIGHT.numbers,
+        "beamWidth": [1.570796],
+        "cutOffAngle": [0.785398],
+        "direction": [0.0, 0.0, -1.0],
+    },
+    flags=dict(_LIGHT_FLAGS),
+    floats=_LIGHT_FLOATS,
+)
+_DIRECTIONAL_LIGHT = DeclaredFields(
+    numbers={**_LIGHT_NUMBERS, "direction": [0.0, 0.0, -1.0]},
+    flags=dict(_LIGHT_FLAGS),
+    floats=_LIGHT_FLOATS,
+)
 _DECLARED = {
+    "PointLight": _POINT_LIGHT,
+    "SpotLight": _SPOT_LIGHT,
+    "DirectionalLight": _DIRECTIONAL_LIGHT,
     "RectangleArena": _RECTANGLE_ARENA,
     "WoodenBox": _WOODEN_BOX,
     "E-puck": _E_PUCK,

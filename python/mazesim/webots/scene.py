@@ -23,7 +23,7 @@ from mazesim.webots.frames import (
     placed,
     rotation_matrix,
 )
-from mazesim.webots.lights import Light, read_lights
+from mazesim.webots.lights import Light, LightSource, light_sources, lit
 from mazesim.webots.proto.syntax import (
     Field,
     Node,
@@ -174,6 +174,8 @@ class Scene:
         north: ``WorldInfo.northDirection`` as x, y (world frame), if set.
         lights: The world's lights that are on; None when it has no light node (the light
             sensors' default ambient), empty when every one is off (darkness).
+        light_sources: The world's light nodes as the file gives them, which :func:`lit`
+            makes the lights of again once a supervisor sets a light's field.
         nodes: The nodes at the top of the file, in file order (the root's ``children``), each
             grouping node with its own ``children``.
         nue: Whether the file uses Webots' old NUE frame (y up): before R2022a, or
@@ -244,6 +246,7 @@ class Scene:
     infrared_elevation: float = 0.0
     ground_sensors_module: bool | None = None
     lights: list[Light] | None = None
+    light_sources: list[LightSource] | None = None
     nodes: list[SceneNode] = field(default_factory=list)
     sensor_tables: dict[str, list[Row]] = field(default_factory=dict)
     malformed_tables: dict[str, str] = field(default_factory=dict)
@@ -356,7 +359,13 @@ def _scene(
     robot_lines = {
         node.start: line_of(node.type_start) for node in every if node.type_name in robot_types
     }
-    scene.lights = read_lights(tree, scene.nue, lambda node: robot_lines.get(node.start))
+    scene.light_sources = light_sources(
+        tree,
+        scene.nue,
+        lambda node: robot_lines.get(node.start),
+        lambda node: line_of(node.type_start),
+    )
+    scene.lights = lit(scene.light_sources, scene.nue)
     if (arguments := first_value(own, "controllerArgs", _itself)) is not None:
         strings = [t.text[1:-1] for t in arguments.tokens if t.kind == "string"]
         bracketed = bool(arguments.tokens) and arguments.tokens[0].kind == "["

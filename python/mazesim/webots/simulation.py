@@ -21,10 +21,11 @@ import numpy.typing as npt
 from mazesim._core import RobotProfile, Simulator, World
 from mazesim.errors import InvalidArgumentError, UnknownNameError, _shown
 from mazesim.webots.keyboard import KeyScript
-from mazesim.webots.lights import Light, carried
+from mazesim.webots.lights import Light, carried, lit
 from mazesim.webots.own_sensors import OwnSensors, own_sensors
 from mazesim.webots.radio import Radio
 from mazesim.webots.scene import Row, Scene
+from mazesim.webots.solids import world_objects
 from mazesim.webots.traction import Traction, epuck_traction
 
 __all__ = [
@@ -269,8 +270,11 @@ class RobotSimulation:
         #: applies at its end.
         self._reset_asked = False
         self.paused = False
-        #: The lights where they stood at a step (:meth:`lights_now`), by its number.
-        self._lights_now: tuple[int, list[Light] | None] | None = None
+        #: The lights where they stood at a step (:meth:`lights_now`), by its number and the
+        #: count of light edits then.
+        self._lights_now: tuple[tuple[int, int], list[Light] | None] | None = None
+        #: The lights with the fields supervisors set, by the count of edits they hold.
+        self._lights_set: tuple[int, list[Light] | None] | None = None
 
     @property
     def time_is_up(self) -> bool:
@@ -389,11 +393,13 @@ class RobotSimulation:
         """The world's lights where they are now (:attr:`Scene.lights`): one a robot holds
         moves with it (:func:`~mazesim.webots.lights.carried`), where this robot stands, or
         another robot of a world run where the world's last step left it; a robot this run
-        does not simulate holds its lights where the world file puts it."""
-        lights = self.scene.lights
+        does not simulate holds its lights where the world file puts it. A light's fields
+        are those a supervisor set, if it did (:meth:`_lights_with_edits`)."""
+        changes = self._light_changes()
+        lights = self._lights_with_edits(changes)
         if not lights or all(light.carrier is None for light in lights):
             return lights
-        if self._lights_now is not None and self._lights_now[0] == self.steps:
+        if self._lights_now is not None and self._lights_now[0] == (self.steps, changes):
             return self._lights_now[1]
         starts = {int(r["line"]): r for r in self.report.get("robots") or [] if r.get("line")}
         # A robot of a world run: the others stand where the world's process has them.
@@ -414,8 +420,26 @@ class RobotSimulation:
                 else:
                     poses[light.carrier] = start["pose"]
             moved.append(carried(light, start["pose"], poses[light.carrier]))
-        self._lights_now = (self.steps, moved)
+        self._lights_now = ((self.steps, changes), moved)
         return moved
+
+    def _light_changes(self) -> int:
+        """How many times a supervisor has set a light's field in this run (or a reset undid
+        the edits): in a world run as the last step's answer told it, else as this run's
+        :class:`~mazesim.webots.solids.WorldSolids` counts them."""
+        if self.fleet is not None:
+            return int(getattr(self.simulator, "light_changes", 0))
+        return int(self.solids.light_changes) if self.solids is not None else 0
+
+    def _lights_with_edits(self, changes: int) -> list[Light] | None:
+        """The world's lights with the fields supervisors set (``changes`` edits so far; none:
+        the world file's), made again only after an edit."""
+        if changes == 0:
+            return self.scene.lights
+        if self._lights_set is None or self._lights_set[0] != changes:
+            edits = world_objects(self).light_edits()
+            self._lights_set = (changes, lit(self.scene.light_sources, self.scene.nue, edits))
+        return self._lights_set[1]
 
     def wheel_angles(self) -> tuple[float, float]:
         """The left and right wheel joints' positions (rad), as Webots' wheel sensors read them:

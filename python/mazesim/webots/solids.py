@@ -82,6 +82,21 @@ class WorldSolids:
         #: The nodes moved since the start or the last reset, by line: their pose in the file
         #: and now, seen from above.
         self._moves: dict[int, tuple[Pose2, Pose2]] = {}
+        #: The fields a supervisor set on light nodes since the start or the last reset, by
+        #: the line of the light's node, and how many times it set one or a reset undid them.
+        self._light_fields: dict[int, dict[str, Any]] = {}
+        self.light_changes = 0
+
+    def edit_light(self, line: int, name: str, value: Any) -> None:
+        """Notes that a supervisor set field ``name`` of the light node on ``line`` to
+        ``value`` (numbers, or a flag for ``on``): every robot's light sensors see the light
+        so from then on (:func:`~mazesim.webots.lights.lit`)."""
+        self._light_fields.setdefault(int(line), {})[str(name)] = value
+        self.light_changes += 1
+
+    def light_edits(self) -> dict[int, dict[str, Any]]:
+        """The fields a supervisor set on light nodes, by the line of each light's node."""
+        return {line: dict(fields) for line, fields in self._light_fields.items()}
 
     def node_moves(self) -> dict[int, tuple[Pose2, Pose2]]:
         """The nodes holding walls or bodies that a supervisor moved since the start or the
@@ -89,8 +104,12 @@ class WorldSolids:
         return dict(self._moves)
 
     def forget_moves(self) -> None:
-        """The world's reset put every node back where the file has it."""
+        """The world's reset put every node back where the file has it, and every light's
+        fields as the file gives them."""
         self._moves.clear()
+        if self._light_fields:
+            self._light_fields.clear()
+            self.light_changes += 1
 
     def body_poses(self) -> list[tuple[float, float, float]]:
         """The movable bodies' poses (x, y, yaw) now, in world order."""
@@ -160,6 +179,9 @@ def carried_over(
         else:
             simulator.change_world(world)
     after = WorldSolids(simulators, report)
+    if before is not None:  # the lights a supervisor set stay set
+        after._light_fields = before.light_edits()
+        after.light_changes = before.light_changes
     for line, (start, now) in moves.items():
         held = after._held.get(line)
         if held is not None and held.walls:

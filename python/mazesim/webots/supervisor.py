@@ -46,6 +46,7 @@ from mazesim.webots.frames import (
 )
 from mazesim.webots.importer import E_PUCK_MODELS
 from mazesim.webots.inert import ContactPoint
+from mazesim.webots.lights import LIGHT_TYPES
 from mazesim.webots.movie import MovieRecorder
 from mazesim.webots.node_types import NODE_TYPES
 from mazesim.webots.proto_fields import declared_fields
@@ -403,6 +404,13 @@ class Node(NotSimulated):
             Robot.created._custom_data = text
         elif self._fleet_index is not None:
             self._simulation().fleet.set_custom_data(self._fleet_index, text)
+
+    def _tell_field(self, name: str, value: Any) -> None:
+        """Gives the world a supervisor's edit of a light's field (a light node's, or a light
+        PROTO's such as a ``ConstructionLamp``'s): every robot's light sensors see the light so,
+        in a world run from the world's next step on (another node only keeps the value)."""
+        if self._type_name in LIGHT_TYPES and self._line and _simulations._current is not None:
+            world_objects(self._simulation()).edit_light(self._line, name, value)
 
     def _tell_controller(self, name: str) -> None:
         """Gives another robot of a world run the controller a supervisor wrote into its
