@@ -7,7 +7,9 @@ from __future__ import annotations
 
 import json
 import math
+from collections.abc import Callable, Iterator
 from pathlib import Path
+from typing import Any
 
 import pytest
 
@@ -79,21 +81,32 @@ def test_a_supervisor_that_moves_and_switches_off_a_light_darkens_another_robot(
     assert readings[30:] == [lit_reading] * (len(readings) - 30)  # the reset: as in the file
 
 
-def test_a_supervisor_robot_sees_its_own_edit_of_a_light(tmp_path: Path) -> None:
-    text = WORLD.replace('controller "watcher"', 'controller "<extern>" supervisor TRUE')
-    supervisor = supervisor_in(tmp_path, text)
-    try:
+@pytest.fixture
+def own_light_sensor(tmp_path: Path) -> Iterator[Callable[[str], tuple[Any, Any]]]:
+    """Prepares a world's text with its e-puck as its own supervisor; gives the supervisor and
+    its ls0, enabled, after a first step."""
+
+    def prepared(text: str) -> tuple[Any, Any]:
+        supervisor = supervisor_in(tmp_path, text)
         ls0 = supervisor.getDevice("ls0")
         ls0.enable(32)
         supervisor.step(32)
-        before = ls0.getValue()
-        lamp = supervisor.getFromDef("LAMP")
-        lamp.getField("intensity").setSFFloat(0.0)
-        supervisor.step(32)
-        assert before < 3000 and ls0.getValue() > before + 1000
-    finally:
-        controller.Robot.created = None
-        simulation.release()
+        return supervisor, ls0
+
+    yield prepared
+    controller.Robot.created = None
+    simulation.release()
+
+
+def test_a_supervisor_robot_sees_its_own_edit_of_a_light(
+    own_light_sensor: Callable[[str], tuple[Any, Any]],
+) -> None:
+    text = WORLD.replace('controller "watcher"', 'controller "<extern>" supervisor TRUE')
+    supervisor, ls0 = own_light_sensor(text)
+    before = ls0.getValue()
+    supervisor.getFromDef("LAMP").getField("intensity").setSFFloat(0.0)
+    supervisor.step(32)
+    assert before < 3000 and ls0.getValue() > before + 1000
 
 
 def test_irradiance_of_an_edited_light_follows_webots_formula() -> None:
@@ -102,3 +115,44 @@ def test_irradiance_of_an_edited_light_follows_webots_formula() -> None:
     # A point light of intensity 0.0075 and attenuation 1/d^2 straight ahead 0.2 m away.
     assert irradiance(moved, (0.0, 0.0, 0.03), 0.0) == pytest.approx(0.0075 / 0.2**2)
     assert math.isclose(irradiance(moved, (0.0, 0.0, 0.03), math.pi), 0.0)
+
+
+#: The lamp held by a Solid 10 cm ahead of an e-puck that is its own supervisor.
+HELD = """#VRML_SIM R2023b utf8
+WorldInfo { basicTimeStep 32 }
+DEF POST Solid {
+  translation 0.1 0 0
+  children [
+    PointLight { location 0 0 0.03 intensity 0.0075 attenuation 0 0 1 }
+  ]
+}
+E-puck { translation 0 0 0 name "watcher" controller "<extern>" supervisor TRUE }
+"""
+
+
+def test_a_light_moves_with_the_node_that_holds_it() -> None:
+    scene = read_scene(HELD)
+    assert scene.light_sources is not None and scene.lights is not None
+    (source,) = scene.light_sources
+    assert source.holders == {3}  # the Solid on line 3
+    assert scene.lights[0].position == pytest.approx((0.1, 0.0, 0.03))
+    (moved,) = lit(scene.light_sources, edits={3: {"translation": [2.0, 1.0, 0.0]}}) or []
+    assert moved.position == pytest.approx((2.0, 1.0, 0.03))
+    turned = {3: {"rotation": [0.0, 1.0, 0.0, math.pi / 2]}}  # the location's z turns to x
+    (tilted,) = lit(scene.light_sources, edits=turned) or []
+    assert tilted.position == pytest.approx((0.13, 0.0, 0.0))
+
+
+def test_a_supervisor_that_moves_the_solid_holding_a_light_moves_the_light(
+    own_light_sensor: Callable[[str], tuple[Any, Any]],
+) -> None:
+    supervisor, ls0 = own_light_sensor(HELD)
+    before = ls0.getValue()
+    supervisor.getFromDef("POST").getField("translation").setSFVec3f([20.0, 0.0, 0.0])
+    supervisor.step(32)
+    away = ls0.getValue()
+    supervisor.simulationReset()
+    supervisor.step(32)
+    supervisor.step(32)
+    assert 1000 < before < 3000 and away == 4095.0
+    assert ls0.getValue() == before  # the reset put the Solid back

@@ -28,11 +28,11 @@ shade (Webots' LightSensor ``occlusion`` defaults to FALSE). A world without any
 gets :data:`DEFAULT_IRRADIANCE`; one whose lights are all off gets none.
 
 A supervisor that sets a light's field (``location``, ``direction``, ``on``, ``intensity``,
-``color``, ``attenuation``, ``radius``...; a lamp's ``spotLightIntensity``) changes what every
-robot's light sensors receive, as in Webots: the world file's light nodes are read once into
-:class:`LightSource` records (the fields as the file gives them, where the node stands), and the
-lights are made of them and the fields a supervisor set since (:func:`lit`), by the line of
-each light's node.
+``color``, ``attenuation``, ``radius``...; a lamp's ``spotLightIntensity``) or moves a node that
+holds a light (its ``translation`` or ``rotation``) changes what every robot's light sensors
+receive, as in Webots: the world file's light nodes are read once into :class:`LightSource`
+records (the fields as the file gives them, the nodes that hold them), and the lights are made
+of them and the fields a supervisor set since (:func:`lit`), by the line of each node.
 """
 
 from __future__ import annotations
@@ -164,6 +164,17 @@ def _node_numbers(node: Node, name: str, default: tuple[float, ...]) -> tuple[fl
 
 
 @dataclass(frozen=True)
+class _Step:
+    """A node above a light: its line, its ``translation`` and ``rotation`` (None: none given)
+    as the file gives them, and where the slot holding the light is in it (None: no slot)."""
+
+    line: int
+    offset: tuple[float, ...]
+    turn: tuple[float, ...] | None
+    slot: tuple[float, float, float] | None
+
+
+@dataclass(frozen=True)
 class LightSource:
     """A light node of the world file, as :func:`lit` makes a :class:`Light` of it.
 
@@ -175,6 +186,8 @@ class LightSource:
         numbers: Its fields of numbers (:data:`_LIGHT_FIELDS`) the file gives.
         on: Its ``on`` field as the file gives it, or None.
         texture: A ``TexturedBackgroundLight``'s ``texture``, or None.
+        chain: The nodes that hold it, outermost first (``holder`` is their poses composed):
+            a supervisor that moves one (its ``translation`` or ``rotation``) moves the light.
     """
 
     line: int
@@ -184,6 +197,12 @@ class LightSource:
     numbers: Mapping[str, tuple[float, ...]] = field(default_factory=dict)
     on: bool | None = None
     texture: str | None = None
+    chain: tuple[_Step, ...] = ()
+
+    @property
+    def holders(self) -> set[int]:
+        """The lines of the nodes that hold it."""
+        return {step.line for step in self.chain if step.line}
 
 
 class _Fields:
@@ -254,39 +273,62 @@ def _construction_lamp(fields: _Fields, holder: Frame, nue: bool) -> Light:
     )
 
 
+def _frame_of(chain: Sequence[_Step], edits: Mapping[int, Mapping[str, Any]]) -> Frame:
+    """The frame the nodes of ``chain`` (outermost first) place a node in, each node's
+    ``translation`` and ``rotation`` as a supervisor set them (``edits``) or as the file gives
+    them."""
+    frame = WORLD_FRAME
+    for step in chain:
+        moved = edits.get(step.line, {})
+        offset = moved.get("translation", step.offset)
+        turn = moved.get("rotation", step.turn)
+        frame = placed(frame, offset, turn)
+        if step.slot is not None:
+            frame = placed(frame, step.slot)
+    return frame
+
+
 def _placed_nodes(
-    tree: Iterable[Node], carrier_of: Callable[[Node], int | None], slots: bool = True
-) -> Iterator[tuple[Node, Frame, int | None]]:
-    """Every node of the trees ``tree`` (``USE`` ones left out) with the frame of the node
-    that holds it, its parents' ``translation`` and ``rotation`` composed, and the robot that
-    holds it (``carrier_of`` a robot node: its line; None for another node), in file order (a
-    stack, not recursion, so at any depth); with ``slots``, an E-puck's slots are where its
-    PROTO mounts them since R2022a (Z-up)."""
-    pending: list[tuple[Node, Frame, int | None]] = [
-        (node, WORLD_FRAME, None) for node in reversed(list(tree))
+    tree: Iterable[Node],
+    carrier_of: Callable[[Node], int | None],
+    slots: bool = True,
+    line_of: Callable[[Node], int] = lambda node: 0,
+) -> Iterator[tuple[Node, tuple[_Step, ...], int | None]]:
+    """Every node of the trees ``tree`` (``USE`` ones left out) with the nodes that hold it
+    (outermost first: :func:`_frame_of` composes their poses) and the robot that holds it
+    (``carrier_of`` a robot node: its line; None for another node), in file order (a stack,
+    not recursion, so at any depth); with ``slots``, an E-puck's slots are where its PROTO
+    mounts them since R2022a (Z-up)."""
+    pending: list[tuple[Node, tuple[_Step, ...], int | None]] = [
+        (node, (), None) for node in reversed(list(tree))
     ]
     while pending:
-        node, holder, carrier = pending.pop()
+        node, chain, carrier = pending.pop()
         if node.use_name is not None:
             continue
-        yield node, holder, carrier
+        yield node, chain, carrier
         offset = _node_numbers(node, "translation", (0.0, 0.0, 0.0))
-        turn = first_value([node], "rotation", lambda item: item.numbers(4))
-        frame = placed(holder, offset, turn)
+        turn = _given_numbers(node, "rotation", 4)
         held = carrier if carrier is not None else carrier_of(node)
+        line = line_of(node)
         inner = [
-            (n, _slot_frame(frame, node, item.name) if slots else frame, held)
+            (
+                n,
+                (
+                    *chain,
+                    _Step(
+                        line,
+                        offset,
+                        turn,
+                        SLOT_ORIGINS.get((node.type_name, item.name)) if slots else None,
+                    ),
+                ),
+                held,
+            )
             for item in node.fields
             for n in item.nodes
         ]
         pending.extend(reversed(inner))
-
-
-def _slot_frame(frame: Frame, node: Node, field_name: str) -> Frame:
-    """The frame of the nodes in field ``field_name`` of ``node`` (at ``frame``): a slot's
-    where the E-puck PROTO mounts it (:data:`~mazesim.webots.frames.SLOT_ORIGINS`)."""
-    origin = SLOT_ORIGINS.get((node.type_name, field_name))
-    return frame if origin is None else placed(frame, origin)
 
 
 def light_sources(
@@ -307,7 +349,7 @@ def light_sources(
         line_of: The line of a node's type in the world file.
     """
     sources: list[LightSource] = []
-    for light, holder, carrier in _placed_nodes(tree, carrier_of, slots=not nue):
+    for light, chain, carrier in _placed_nodes(tree, carrier_of, not nue, line_of):
         if light.type_name not in LIGHT_TYPES:
             continue
         numbers = {
@@ -319,11 +361,12 @@ def light_sources(
             LightSource(
                 line_of(light),
                 light.type_name,
-                holder,
+                _frame_of(chain, {}),
                 carrier,
                 numbers,
                 first_value([light], "on", Field.flag),
                 first_value([light], "texture", Field.string),
+                chain,
             )
         )
     return sources if sources else None
@@ -340,8 +383,11 @@ def lit(
     if sources is None:
         return None
     lights: list[Light] = []
+    edits = edits or {}
     for source in sources:
-        fields = _Fields(source, (edits or {}).get(source.line, {}))
+        fields = _Fields(source, edits.get(source.line, {}))
+        if any(step.line in edits for step in source.chain):
+            source = replace(source, holder=_frame_of(source.chain, edits))
         made = _light(source, fields, nue)
         if made is not None:
             lights.append(made)

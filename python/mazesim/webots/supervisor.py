@@ -407,10 +407,16 @@ class Node(NotSimulated):
 
     def _tell_field(self, name: str, value: Any) -> None:
         """Gives the world a supervisor's edit of a light's field (a light node's, or a light
-        PROTO's such as a ``ConstructionLamp``'s): every robot's light sensors see the light so,
-        in a world run from the world's next step on (another node only keeps the value)."""
-        if self._type_name in LIGHT_TYPES and self._line and _simulations._current is not None:
-            world_objects(self._simulation()).edit_light(self._line, name, value)
+        PROTO's such as a ``ConstructionLamp``'s), or of the ``translation`` or ``rotation`` of
+        a node that holds a light: every robot's light sensors see the light so, in a world run
+        from the world's next step on (another node only keeps the value)."""
+        if not self._line or _simulations._current is None:
+            return
+        simulation = self._simulation()
+        holders = set().union(*(s.holders for s in simulation.scene.light_sources or []))
+        moves_light = name in ("translation", "rotation") and self._line in holders
+        if self._type_name in LIGHT_TYPES or moves_light:
+            world_objects(simulation).edit_light(self._line, name, value)
 
     def _tell_controller(self, name: str) -> None:
         """Gives another robot of a world run the controller a supervisor wrote into its
