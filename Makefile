@@ -127,11 +127,11 @@ demo: build ## the shipped hierarchical navigator drives seed-maze to its goal; 
 # would break rosbag).
 ROS_DEBS := python3-rosmaster python3-roslaunch python3-rospy python3-rostopic python3-std-msgs \
 	python3-rosgraph-msgs python3-rosbag rosout python3-sensor-msgs python3-nav-msgs \
-	python3-geometry-msgs python3-tf2-msgs python3-std-srvs
+	python3-geometry-msgs python3-tf2-msgs python3-tf2-ros python3-std-srvs
 ROS_PTH = $$($(BIN)/python -c 'import sysconfig; print(sysconfig.get_paths()["purelib"])')/zz-debian-ros.pth
 
 ros-deps: venv ## install Debian's ROS 1 packages if missing; let .venv import them
-	@if /usr/bin/python3 -c 'import rospy, rosbag, sensor_msgs.msg, nav_msgs.msg, geometry_msgs.msg, tf2_msgs.msg, std_srvs.srv' 2>/dev/null; then :; \
+	@if /usr/bin/python3 -c 'import rospy, rosbag, sensor_msgs.msg, nav_msgs.msg, geometry_msgs.msg, tf2_msgs.msg, tf2_ros, std_srvs.srv' 2>/dev/null; then :; \
 	elif command -v apt-get >/dev/null; then \
 		sudo=; [ "$$(id -u)" -eq 0 ] || sudo=sudo; \
 		$$sudo apt-get update && $$sudo apt-get install -y --no-install-recommends $(ROS_DEBS); \

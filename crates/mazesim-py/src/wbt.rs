@@ -76,6 +76,7 @@ fn robot_and_floor(out: &Bound<'_, PyDict>, import: &WbtImport) -> PyResult<()> 
         d.set_item("size", texture.size.to_vec())?;
         d.set_item("yaw", texture.yaw)?;
         d.set_item("tile", texture.tile.to_vec())?;
+        d.set_item("repeat", texture.repeat.to_vec())?;
         d.set_item("candidates", texture.candidates.clone())
     })?;
     out.set_item("floor_textures", textures)?;

@@ -114,7 +114,9 @@ class ExtensionDevice(TypedDict):
 
 
 class FloorTexture(TypedDict):
-    """An image texture on the floor: where it lies, how it tiles, which files were looked for."""
+    """An image texture on the floor: where it lies, how it tiles (``repeat``: whether the image
+    repeats along its x and y, the ``ImageTexture``'s ``repeatS`` and ``repeatT``; one that does
+    not is laid once, its edge stretched to the floor's), which files were looked for."""
 
     urls: list[str]
     owner: str
@@ -122,6 +124,7 @@ class FloorTexture(TypedDict):
     size: list[float]
     yaw: float
     tile: list[float]
+    repeat: list[bool]
     candidates: list[str]
 
 

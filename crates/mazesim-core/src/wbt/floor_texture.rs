@@ -10,8 +10,14 @@
 //! rectangle's (-x, -y) corner, the image's top row towards +y and its left column towards -x;
 //! the Y-up `Floor` PROTO of worlds before R2022a starts them at its (-x, +z) corner, the top row
 //! towards -z, a quarter turn from the Z-up one's.
+//! An `ImageTexture` with `repeatS FALSE` (or `repeatT FALSE`) is not repeated along the image's
+//! x (or y): Webots clamps the texture coordinates to [0, 1] (reference manual, ImageTexture),
+//! so one copy lies in the first tile and its last column (top row) stretches to the floor's
+//! edge.
 //! A grey level `g` in [0, 1] paints the reflection factor `0.2 + 0.8 g` of Webots' infra-red
-//! model (white 1, black 0.2), in steps of 1/255 of the grey scale.
+//! model (white 1, black 0.2), in steps of 1/255 of the grey scale. A texture's paint fits what
+//! the world's paint regions leave ([`MAX_PAINT_REGIONS`] with the paint before it), its image
+//! averaged down until it does.
 
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -22,7 +28,8 @@ use super::import::{Importer, TILT_TOLERANCE};
 use super::shapes::{snap, wrap_angle, FLOOR_LEVEL};
 use super::tree::Node;
 use super::WbtImport;
-use crate::world::spec::PaintSpec;
+use crate::limits::MAX_PAINT_REGIONS;
+use crate::world::spec::{paint_regions, PaintSpec};
 use crate::world::values::{Finite, Positive, Reflectance};
 
 /// Largest image side read, in pixels: larger images are averaged down to it (by area) first.
@@ -60,6 +67,9 @@ pub struct FloorTexture {
     pub yaw: f64,
     /// Size on the floor of one copy of the image.
     pub tile: [f64; 2],
+    /// Whether the image repeats along its x and y (the `ImageTexture`'s `repeatS` and
+    /// `repeatT`); one that does not is laid once, its edge stretched to the floor's.
+    pub repeat: [bool; 2],
     /// Files to look for, in order: each url beside the world file, then in `textures/` beside it.
     pub candidates: Vec<String>,
 }
@@ -169,26 +179,42 @@ fn pixel_rects(image: &GreyImage) -> Vec<GreyRect> {
 /// [`MAX_TEXTURE_SIDE`]), halved while its paint does not fit [`MAX_TEXTURE_PAINT`], down to
 /// [`MIN_TEXTURE_SIDE`]; or why it does not fit even then.
 fn fitted(image: &GreyImage, tile_count: usize) -> Result<(GreyImage, Vec<GreyRect>), String> {
-    let mut image = image.averaged(MAX_TEXTURE_SIDE);
-    loop {
-        let rects = pixel_rects(&image);
+    halved_until(image.averaged(MAX_TEXTURE_SIDE), |image, rects| {
         if tile_count.saturating_mul(rects.len()) <= MAX_TEXTURE_PAINT {
-            return Ok((image, rects));
-        }
-        let side = image.width.max(image.height);
-        if side <= MIN_TEXTURE_SIDE {
-            return Err(format!(
+            Ok((image.clone(), rects))
+        } else {
+            Err(format!(
                 "expected at most {MAX_TEXTURE_PAINT} paint rectangles, found {tile_count} tiles of {} rectangles",
                 rects.len()
-            ));
+            ))
+        }
+    })
+}
+
+/// What `fits` makes of `image` and its rectangles, the image halved (averaged by area, down to
+/// [`MIN_TEXTURE_SIDE`]) while `fits` refuses it; or its refusal of the smallest.
+fn halved_until<T>(
+    mut image: GreyImage,
+    mut fits: impl FnMut(&GreyImage, Vec<GreyRect>) -> Result<T, String>,
+) -> Result<T, String> {
+    loop {
+        let refusal = match fits(&image, pixel_rects(&image)) {
+            Ok(done) => return Ok(done),
+            Err(why) => why,
+        };
+        let side = image.width.max(image.height);
+        if side <= MIN_TEXTURE_SIDE {
+            return Err(refusal);
         }
         image = image.averaged((side / 2).max(MIN_TEXTURE_SIDE));
     }
 }
 
 impl FloorTexture {
-    /// The paint of this texture for its image, or why it cannot be painted.
-    pub fn paint(&self, image: &GreyImage) -> Result<Vec<PaintSpec>, String> {
+    /// The paint of this texture for its image, within `room` paint regions (what the world's
+    /// paint leaves: the image is averaged down further while its paint does not fit), or why
+    /// it cannot be painted.
+    pub fn paint(&self, image: &GreyImage, room: usize) -> Result<Vec<PaintSpec>, String> {
         if image.width == 0 || image.height == 0 || image.levels.len() != image.width * image.height
         {
             return Err(format!(
@@ -200,9 +226,37 @@ impl FloorTexture {
         }
         let [sx, sy] = self.size;
         let [tx, ty] = self.tile;
-        let tiles = [(sx / tx).ceil() as usize, (sy / ty).ceil() as usize];
-        let tile_count = tiles[0].saturating_mul(tiles[1]);
-        let (image, rects) = fitted(image, tile_count)?;
+        // Tiles along each axis: one when the image does not repeat along it.
+        let tiles = [
+            if self.repeat[0] {
+                (sx / tx).ceil() as usize
+            } else {
+                1
+            },
+            if self.repeat[1] {
+                (sy / ty).ceil() as usize
+            } else {
+                1
+            },
+        ];
+        let (image, _) = fitted(image, tiles[0].saturating_mul(tiles[1]))?;
+        halved_until(image, |image, rects| {
+            let paint = self.laid(image, &rects, tiles);
+            if paint.len() <= room {
+                Ok(paint)
+            } else {
+                Err(format!(
+                    "expected at most {room} paint regions (what the world's paint leaves), found {}",
+                    paint.len()
+                ))
+            }
+        })
+    }
+
+    /// The paint of `image` (its equal-grey `rects`) laid in `tiles` copies along x and y.
+    fn laid(&self, image: &GreyImage, rects: &[GreyRect], tiles: [usize; 2]) -> Vec<PaintSpec> {
+        let [sx, sy] = self.size;
+        let [tx, ty] = self.tile;
         let (px, py) = (tx / image.width as f64, ty / image.height as f64);
         let (s, c) = self.yaw.sin_cos();
         let mut paint = Vec::new();
@@ -211,10 +265,23 @@ impl FloorTexture {
                 // The tile's top-left corner in the rectangle's frame (origin at its centre).
                 let left = -sx / 2.0 + i as f64 * tx;
                 let top = -sy / 2.0 + (j + 1) as f64 * ty;
-                for &([c0, c1, r0, r1], level) in &rects {
+                for &([c0, c1, r0, r1], level) in rects {
+                    // A rectangle on the image's last column (top row) of an image that does
+                    // not repeat along x (y) stretches to the floor's edge, as clamped
+                    // texture coordinates draw it.
+                    let right_edge = !self.repeat[0] && c1 == image.width;
+                    let top_edge = !self.repeat[1] && r0 == 0;
                     let x0 = left + c0 as f64 * px;
-                    let x1 = (left + c1 as f64 * px).min(sx / 2.0);
-                    let y1 = (top - r0 as f64 * py).min(sy / 2.0);
+                    let x1 = if right_edge {
+                        sx / 2.0
+                    } else {
+                        (left + c1 as f64 * px).min(sx / 2.0)
+                    };
+                    let y1 = if top_edge {
+                        sy / 2.0
+                    } else {
+                        (top - r0 as f64 * py).min(sy / 2.0)
+                    };
                     let y0 = (top - r1 as f64 * py).max(-sy / 2.0);
                     if x1 - x0 <= 1e-9 || y1 - y0 <= 1e-9 {
                         continue;
@@ -233,7 +300,7 @@ impl FloorTexture {
                 }
             }
         }
-        Ok(paint)
+        paint
     }
 }
 
@@ -246,13 +313,15 @@ impl WbtImport {
     pub fn paint_floor(&mut self, images: &BTreeMap<String, GreyImage>) {
         // Texture paint goes under the marks of visual-only shapes already painted.
         let marks = std::mem::take(&mut self.paint);
+        let marked = paint_regions(&marks);
         for texture in &self.floor_textures {
             let found = texture
                 .candidates
                 .iter()
                 .find_map(|c| images.get(c).map(|image| (c, image)));
             if let Some((file, image)) = found {
-                match texture.paint(image) {
+                let room = MAX_PAINT_REGIONS.saturating_sub(marked + paint_regions(&self.paint));
+                match texture.paint(image, room) {
                     Ok(paint) => self.paint.extend(paint),
                     Err(why) => self.warnings.push(format!(
                         "{}: floor texture {file}: not painted: {why}",
@@ -318,7 +387,10 @@ impl<'d> Importer<'d> {
     /// The `ImageTexture` urls of an appearance (`PBRAppearance.baseColorMap`,
     /// `Appearance.texture`) and its `textureTransform` scale; `None` when it has no texture
     /// with a url.
-    fn appearance_texture(&mut self, appearance: &'d Node) -> Option<(Vec<String>, [f64; 2])> {
+    fn appearance_texture(
+        &mut self,
+        appearance: &'d Node,
+    ) -> Option<(Vec<String>, [f64; 2], [bool; 2])> {
         let field = match appearance.type_name.as_str() {
             "PBRAppearance" => "baseColorMap",
             "Appearance" => "texture",
@@ -331,12 +403,26 @@ impl<'d> Importer<'d> {
             }
         };
         let urls = self.image_texture_urls(appearance, field)?;
+        let repeat = self.texture_repeats(appearance, field);
         let scale = self
             .nodes(appearance, "textureTransform")
             .first()
             .map(|&id| self.node(id))
             .map_or([1.0, 1.0], |t| self.vector(t, "scale", [1.0, 1.0]));
-        Some((urls, scale))
+        Some((urls, scale, repeat))
+    }
+
+    /// Whether the `ImageTexture` in the field `field` of an appearance repeats along the
+    /// image's x and y (its `repeatS` and `repeatT`, TRUE unless the file says FALSE).
+    fn texture_repeats(&self, appearance: &'d Node, field: &str) -> [bool; 2] {
+        let texture = self
+            .nodes(appearance, field)
+            .iter()
+            .map(|&id| self.node(id))
+            .find(|n| n.type_name == "ImageTexture");
+        ["repeatS", "repeatT"].map(|name| {
+            texture.is_none_or(|t| t.field(name).is_none_or(|f| f.value.bools != [false]))
+        })
     }
 
     /// Records a texture laid on the floor rectangle `size` of `frame` (Z-up), one image per `tile`.
@@ -354,7 +440,7 @@ impl<'d> Importer<'d> {
         tile: [f64; 2],
         y_up_floor: bool,
     ) {
-        let Some((urls, scale)) = self.appearance_texture(appearance) else {
+        let Some((urls, scale, repeat)) = self.appearance_texture(appearance) else {
             return;
         };
         let label = self.label(owner);
@@ -384,6 +470,7 @@ impl<'d> Importer<'d> {
             size: [size[0] * sx, size[1] * sy],
             yaw: wrap_angle(snap(yaw)),
             tile: [tile[0] * sx, tile[1] * sy],
+            repeat,
             candidates: Vec::new(),
         });
     }
@@ -562,6 +649,7 @@ mod tests {
             size,
             yaw: 0.0,
             tile,
+            repeat: [true, true],
             candidates: vec!["track.png".into()],
         }
     }
@@ -596,7 +684,9 @@ mod tests {
             levels,
         };
         assert_eq!(pixel_rects(&image).len(), 5);
-        let paint = texture([0.4, 0.3], [0.4, 0.3]).paint(&image).unwrap();
+        let paint = texture([0.4, 0.3], [0.4, 0.3])
+            .paint(&image, MAX_PAINT_REGIONS)
+            .unwrap();
         // Pixel (row 0, column 1) is at x in [-0.1, 0], y in [0.05, 0.15].
         assert_eq!(reflectance_at(&paint, -0.05, 0.1), Some(0.2));
         assert_eq!(reflectance_at(&paint, -0.15, -0.1), Some(1.0));
@@ -615,7 +705,9 @@ mod tests {
             levels: vec![0.0, 1.0],
         };
         // A 1 x 0.2 floor in tiles of 0.4 x 0.2: black, white, black, white, black (cut).
-        let paint = texture([1.0, 0.2], [0.4, 0.2]).paint(&image).unwrap();
+        let paint = texture([1.0, 0.2], [0.4, 0.2])
+            .paint(&image, MAX_PAINT_REGIONS)
+            .unwrap();
         for (x, f) in [
             (-0.45, 0.2),
             (-0.25, 1.0),
@@ -629,13 +721,64 @@ mod tests {
     }
 
     #[test]
+    fn an_image_that_does_not_repeat_is_laid_once_its_edges_stretched() {
+        // Top row black, white; bottom row white, black; one 0.4 m copy at the (-x, -y) corner
+        // of a 1 m floor, its last column stretched to +x and its top row to +y.
+        let image = GreyImage {
+            width: 2,
+            height: 2,
+            levels: vec![0.0, 1.0, 1.0, 0.0],
+        };
+        let mut once = texture([1.0, 1.0], [0.4, 0.4]);
+        once.repeat = [false, false];
+        let paint = once.paint(&image, MAX_PAINT_REGIONS).unwrap();
+        assert_eq!(paint.len(), 4);
+        for (x, y, f) in [
+            (-0.45, -0.45, 1.0), // bottom left
+            (-0.15, -0.2, 1.0),  // top right
+            (0.3, -0.45, 0.2),   // the last column, stretched: bottom right
+            (-0.45, 0.3, 0.2),   // the top row, stretched: top left
+            (-0.15, 0.3, 1.0),
+            (0.45, 0.45, 1.0), // the top right texel in the corner
+        ] {
+            assert_eq!(reflectance_at(&paint, x, y), Some(f), "({x}, {y})");
+        }
+        // Repeated along y only: copies up the floor, the last column stretched along x.
+        once.repeat = [false, true];
+        let paint = once.paint(&image, MAX_PAINT_REGIONS).unwrap();
+        assert_eq!(reflectance_at(&paint, 0.3, 0.0), Some(0.2)); // second copy's bottom row
+        assert_eq!(reflectance_at(&paint, -0.45, 0.0), Some(1.0));
+        assert_eq!(reflectance_at(&paint, 0.3, 0.2), Some(1.0)); // its top row
+    }
+
+    #[test]
+    fn a_texture_fits_the_paint_the_world_has_left() {
+        // 512 x 512 in one-pixel stripes, black and white: 512 rectangles, one grey one once
+        // averaged to 256 x 256; in 4 tiles 2048 regions, or 4.
+        let side = 512;
+        let levels = (0..side * side).map(|i| (i % 2) as f64).collect();
+        let image = GreyImage {
+            width: side,
+            height: side,
+            levels,
+        };
+        let tiled = texture([1.0, 1.0], [0.5, 0.5]);
+        assert_eq!(tiled.paint(&image, MAX_PAINT_REGIONS).unwrap().len(), 2048);
+        assert_eq!(tiled.paint(&image, 1000).unwrap().len(), 4);
+        let err = tiled.paint(&image, 3).unwrap_err();
+        assert!(err.contains("expected at most 3 paint regions"), "{err}");
+    }
+
+    #[test]
     fn too_many_tiles_are_refused_not_painted() {
         let image = GreyImage {
             width: 2,
             height: 2,
             levels: vec![0.0, 1.0, 1.0, 0.0],
         };
-        let err = texture([1e6, 1e6], [1e-3, 1e-3]).paint(&image).unwrap_err();
+        let err = texture([1e6, 1e6], [1e-3, 1e-3])
+            .paint(&image, usize::MAX)
+            .unwrap_err();
         assert!(
             err.contains("expected at most 200000 paint rectangles"),
             "{err}"
@@ -654,7 +797,9 @@ mod tests {
             height,
             levels,
         };
-        let paint = texture([0.512, 0.3], [0.512, 0.3]).paint(&image).unwrap();
+        let paint = texture([0.512, 0.3], [0.512, 0.3])
+            .paint(&image, MAX_PAINT_REGIONS)
+            .unwrap();
         assert_eq!(paint.len(), 2, "one black and one white rectangle");
         let edge = -0.256 + 0.2;
         assert_eq!(reflectance_at(&paint, edge - 0.0005, 0.0), Some(0.2));
@@ -688,7 +833,9 @@ mod tests {
         // One pixel a millimetre: every pixel of the ring, which is one 8-connected piece, is
         // painted black where it lies.
         let (image, on_ring) = ring_image();
-        let paint = texture([0.8, 0.8], [0.8, 0.8]).paint(&image).unwrap();
+        let paint = texture([0.8, 0.8], [0.8, 0.8])
+            .paint(&image, MAX_PAINT_REGIONS)
+            .unwrap();
         for (i, _) in on_ring.iter().enumerate().filter(|(_, &on)| on) {
             let (r, c) = ((i / 800) as f64 + 0.5, (i % 800) as f64 + 0.5);
             let (x, y) = (-0.4 + c * 1e-3, 0.4 - r * 1e-3);

@@ -173,14 +173,7 @@ impl World {
     fn compile(spec: WorldSpec, source: &str, text: &str) -> Result<World> {
         let check = ExtentCheck { source, text };
         check.time_step(spec.basic_time_step_ms.get())?;
-        let polyline_segments: usize = spec
-            .paint
-            .iter()
-            .map(|p| match p {
-                PaintSpec::Polyline { points, .. } => points.len(),
-                _ => 1,
-            })
-            .sum();
+        let polyline_segments = spec::paint_regions(&spec.paint);
         check.counts(
             spec.walls.len() + spec.segments.len(),
             polyline_segments + spec.checkpoints.len() * values::BARCODE_BITS,

@@ -267,6 +267,18 @@ fn is_false(v: &bool) -> bool {
     !*v
 }
 
+/// How many of the world's paint regions ([`crate::limits::MAX_PAINT_REGIONS`]) `paint`
+/// takes: one per region, a polyline one per point.
+pub fn paint_regions(paint: &[PaintSpec]) -> usize {
+    paint
+        .iter()
+        .map(|p| match p {
+            PaintSpec::Polyline { points, .. } => points.len(),
+            _ => 1,
+        })
+        .sum()
+}
+
 /// `[[paint]]`: a floor region.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "shape", rename_all = "lowercase", deny_unknown_fields)]
