@@ -913,14 +913,29 @@ class Camera(_Sensor):
         """-1: no segmentation."""
         return -1
 
-    def saveImage(self, filename: str, quality: int = 100) -> int:
+    def saveImage(self, filename: str | os.PathLike[str], quality: int = 100) -> int:
         """Saves the last image as PNG or JPEG (by the file's extension), a JPEG of
         ``quality`` (1-100) as Webots writes one (stb_image_write: its colours at full
         resolution above quality 90, at half resolution from 90 down).
 
         Returns:
             0 on success, -1 on failure (no image yet, unknown extension, unwritable file).
+
+        Raises:
+            WrongTypeError: ``filename`` is no text or path object of text (or one that cannot
+                say its path).
         """
+        try:
+            filename = os.fspath(filename)
+        except Exception as failure:
+            raise WrongTypeError(
+                f"Camera.saveImage: expected a file name, found {type(filename).__name__} "
+                f"({failure})"
+            ) from failure
+        if not isinstance(filename, str):
+            raise WrongTypeError(
+                f"Camera.saveImage: expected a file name as text, found {type(filename).__name__}"
+            )
         pixels = self._drawn()
         extension = os.path.splitext(filename)[1].lower()
         if pixels is None or extension not in (".png", ".jpg", ".jpeg"):

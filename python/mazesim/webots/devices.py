@@ -107,11 +107,13 @@ def derived_reading(width: int = 0) -> Callable[[Callable[..., Any]], Callable[.
     (``values[i] = NAN`` in src/controller/c: gps.c, touch_sensor.c...)."""
 
     def wrap(getter: Callable[..., Any]) -> Callable[..., Any]:
+        # A derived getter takes no argument: one given is refused whether or not the sensor
+        # has read yet (the NaN answer checked none).
         @functools.wraps(getter)
-        def answer(self: _Sensor, *args: Any, **kwargs: Any) -> Any:
+        def answer(self: _Sensor) -> Any:
             if not self._has_reading:
                 return [math.nan] * width if width else math.nan
-            return getter(self, *args, **kwargs)
+            return getter(self)
 
         return answer
 
