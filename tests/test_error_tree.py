@@ -191,3 +191,29 @@ def test_a_long_word_of_any_message_is_shortened_to_about_200_characters() -> No
         mazesim.World.load("/tmp/" + "a" * 5000)
     assert len(str(missing.value)) < 2 * MOST_QUOTED + 200, str(missing.value)
     assert str(mazesim.MazesimError("short words " * 100)) == "short words " * 100
+
+
+def test_any_failure_with_an_argument_its_annotation_does_not_take_names_that_argument() -> None:
+    # Not only the built-in argument failures: a library's own exception (zipfile's BadZipFile,
+    # an Exception) or an arithmetic one, met because an argument was of the wrong kind, is
+    # refused naming that argument; the same failure with fitting arguments is not.
+    from mazesim._checks import checked
+
+    def opened(archive: bytes, parts: list[int]) -> int:
+        zipfile.ZipFile(io.BytesIO(archive))
+        return 1 // parts[0]
+
+    call = checked(opened)
+    with pytest.raises(mazesim.WrongTypeError, match="parts") as caught:
+        call(b"not a zip", [1.5])
+    assert "parts" in str(caught.value) and "1.5" in str(caught.value)
+    with pytest.raises(InternalError, match="BadZipFile"):
+        call(b"not a zip", [1])
+
+    def divided(parts: list[int]) -> int:
+        return 1 // parts[0]
+
+    with pytest.raises(mazesim.WrongTypeError, match="parts"):
+        checked(divided)([0.0])
+    with pytest.raises(ZeroDivisionError):  # the caller's own code, fitting arguments
+        checked(divided)([0])

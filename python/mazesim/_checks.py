@@ -747,6 +747,12 @@ def checked(func: Callable[..., Any], *, method: bool = False) -> Callable[..., 
                 raise
             raise instead from failure
         except Exception as failure:
+            # Any other failure (a library's own exception, ZeroDivisionError, a RuntimeError
+            # from a value's method): an argument its annotation does not take is the cause.
+            try:
+                parameters.check(args, kwargs)
+            except error as refusal:
+                raise refusal.with_traceback(None) from None
             instead = tree(func.__qualname__, failure, False)
             if instead is failure:
                 raise

@@ -635,3 +635,29 @@ def test_e_pucks_written_on_one_another_that_a_supervisor_scatters_share_one_wor
     assert shared and all(shared)
     assert moved.final_pose[0] == pytest.approx(0.1, abs=1e-6)
     assert still.final_pose[0] == pytest.approx(0.0, abs=1e-6)
+
+
+def test_a_controller_beside_the_world_file_runs_with_a_warning_that_webots_would_not_find_it(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    # Webots' project is the folder above the world's (WbProject::projectPathFromWorldFile):
+    # controllers/ beside the world file is not looked in. mazesim runs it and says so.
+    (tmp_path / "controllers" / "still").mkdir(parents=True)
+    (tmp_path / "controllers" / "still" / "still.py").write_text(
+        "from controller import Robot\nrobot = Robot()\nwhile robot.step(32) != -1:\n    pass\n"
+    )
+    world = tmp_path / "w.wbt"
+    world.write_text('#VRML_SIM R2023b utf8\nRectangleArena { }\nE-puck { controller "still" }\n')
+    found, note = controller_of({"name": "e-puck", "controller": "still"}, str(world), {})
+    assert found == str(tmp_path / "controllers" / "still" / "still.py")
+    assert "beside the world file" in note and "would not start it" in note
+    run = run_world(str(world), seconds=0.1)
+    assert run.robots[0].controller == found and run.robots[0].note == ""
+    assert run.robots[0].exit_status == 0
+    assert "robot 'e-puck': its controller still was found in controllers/ beside" in (
+        capsys.readouterr().err
+    )
+    (tmp_path / "worlds").mkdir()
+    inside = tmp_path / "worlds" / "w.wbt"
+    inside.write_text(world.read_text())
+    assert controller_of({"name": "e-puck", "controller": "still"}, str(inside), {}) == (found, "")

@@ -615,7 +615,8 @@ class Fleet:
 def controller_of(
     robot: Mapping[str, Any], world_path: str, given: Mapping[str, str], by_field: bool = False
 ) -> tuple[str | None, str]:
-    """The controller file a robot runs, or None and why not.
+    """The controller file a robot runs, or None and why not; with a file, a note when it
+    was found where Webots would not look (beside the world file), else "".
 
     Args:
         robot: The robot's entry of the import report's ``robots``.
@@ -648,7 +649,7 @@ def controller_of(
         for suffix in CONTROLLER_SUFFIXES:  # as Webots looks for them
             candidate = os.path.join(project, "controllers", name, f"{name}{suffix}")
             if os.path.isfile(candidate):
-                return candidate, ""
+                return candidate, "" if project != folder else _BESIDE_THE_WORLD.format(name)
     stock = stock_controller(name)
     if stock is not None:  # Webots' own, which it finds among its projects
         return stock, ""
@@ -656,6 +657,15 @@ def controller_of(
         f"no controller controllers/{name}/{name}{', '.join(CONTROLLER_SUFFIXES)}"
         + _controller_meant(name, world_path)
     )
+
+
+#: The note of a controller found in ``controllers/`` beside the world file, where mazesim looks
+#: too and Webots does not (``WbProject::projectPathFromWorldFile``: the project is the folder
+#: above the world's).
+_BESIDE_THE_WORLD = (
+    "its controller {} was found in controllers/ beside the world file; Webots looks for it only "
+    "in the project's controllers/, in the folder above the world's, and would not start it"
+)
 
 
 def _controller_meant(name: str, world_path: str) -> str:
@@ -858,6 +868,9 @@ def _robot_run(
     profile = robot_profile_name({"robot_profile": robot.get("profile")})
     file, note = controller_of(robot, world_path, given, by_field)
     label = robot_label(robot)
+    if file is not None and note:  # found where Webots would not look
+        print(f"mazesim: warning: robot {_shown(label)}: {note}", file=sys.stderr)
+        note = ""
     run = RobotRun(index, str(label), str(robot.get("model")), file, note)
     if file is None:
         # A controller in a language mazesim does not run is what the run lacks, said in its
