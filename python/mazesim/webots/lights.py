@@ -158,11 +158,6 @@ def _given_numbers(node: Node, name: str, count: int) -> tuple[float, ...] | Non
     return None if found is None else tuple(found)
 
 
-def _node_numbers(node: Node, name: str, default: tuple[float, ...]) -> tuple[float, ...]:
-    """A node's field of ``len(default)`` numbers, ``default`` where the file gives none."""
-    return first_value([node], name, lambda item: item.numbers(len(default))) or default
-
-
 @dataclass(frozen=True)
 class _Step:
     """A node above a light: its line, its ``translation`` and ``rotation`` (None: none given)
@@ -307,7 +302,7 @@ def _placed_nodes(
         if node.use_name is not None:
             continue
         yield node, chain, carrier
-        offset = _node_numbers(node, "translation", (0.0, 0.0, 0.0))
+        offset = _given_numbers(node, "translation", 3) or (0.0, 0.0, 0.0)
         turn = _given_numbers(node, "rotation", 4)
         held = carrier if carrier is not None else carrier_of(node)
         line = line_of(node)
