@@ -76,3 +76,18 @@ def test_vector_and_scalar_braitenberg_agree() -> None:
     for row, (left, right) in zip(ps, out):
         expected = np.clip(braitenberg_one(row.tolist()), -MAX_WHEEL_SPEED, MAX_WHEEL_SPEED)
         assert np.allclose([left, right], expected, atol=1e-4)
+
+
+@pytest.mark.parametrize("actions", [-1, 0, 2**70, None, [0.0] * 8, "x", object(), np.float32(1)])
+def test_an_action_buffer_that_is_not_an_array_is_refused_before_numpy_reads_it(
+    actions: object,
+) -> None:
+    # numpy's generators read an ``out`` of another kind as an array without looking: the
+    # random workload's fill of an int crashed the process (found by the fuzzed registry).
+    from mazesim.errors import InvalidArgumentError, WrongTypeError
+
+    with pytest.raises(WrongTypeError, match="actions"):
+        make_workload("random", 4).act(np.zeros((4, 8), np.float32), actions)  # type: ignore[arg-type]
+    for name in ("braitenberg", "contact"):
+        with pytest.raises(InvalidArgumentError):
+            make_workload(name, 4).act(np.zeros((4, 8), np.float32), actions)  # type: ignore[arg-type]

@@ -20,7 +20,7 @@ from typing import Literal, Optional, Protocol
 import numpy as np
 import numpy.typing as npt
 
-from mazesim.errors import RegisteredName, _known_name
+from mazesim.errors import RegisteredName, WrongTypeError, _a_type, _known_name
 
 __all__ = [
     "WORKLOADS",
@@ -185,7 +185,18 @@ class RandomWorkload:
         self.rng = np.random.default_rng(stream)
 
     def act(self, observations: F32, actions: F32) -> F32:
+        """Fills ``actions`` (float32, shape (envs, 2)) with the next draws and returns it.
+
+        Raises:
+            WrongTypeError: ``actions`` is not a numpy array (numpy's generators read an ``out``
+                that is not one as an array, which can crash the process).
+        """
         del observations
+        if not isinstance(actions, np.ndarray):
+            raise WrongTypeError(
+                f"RandomWorkload.act: expected actions as a float32 numpy array of shape "
+                f"(envs, 2), found {_a_type(actions)}"
+            )
         self.rng.random(dtype=np.float32, out=actions)
         actions *= np.float32(2.0 * MAX_WHEEL_SPEED)
         actions -= np.float32(MAX_WHEEL_SPEED)
