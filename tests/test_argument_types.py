@@ -454,3 +454,27 @@ def test_a_typed_dict_parameter_is_checked_as_a_mapping() -> None:
     with pytest.raises(mazesim.InvalidArgumentError, match="expected the argument 'settings'"):
         check(other=1)
     assert check({"robot_line": 2}, 1) == 3
+
+
+def test_a_container_for_a_plain_value_is_refused_before_the_call() -> None:
+    # numpy's SeedSequence recurses into a list given for a seed in C, without bound: a list
+    # nested deep enough crashed the process (found by the fuzzed registry); any container
+    # given where an int, a float, a bool or a text is annotated is refused before the call.
+    from mazesim.benchmark.workloads import RandomWorkload
+
+    deep: list[Any] = []
+    for _ in range(100_000):
+        deep = [deep]
+    for given in (deep, [1, 2], (3,), {"seed": 1}, {1}):
+        with pytest.raises(mazesim.WrongTypeError, match="seed refused: expected int"):
+            RandomWorkload(4, seed=given)  # type: ignore[arg-type]
+    assert RandomWorkload(4, seed=3).rng.random() == RandomWorkload(4, seed=3).rng.random()
+
+
+def test_a_missing_argument_annotated_with_a_protocol_is_named() -> None:
+    # The check looks among the given values for the missing one's class; a protocol that is
+    # not runtime-checkable cannot be tested so (isinstance raised TypeError out of the check).
+    from mazesim.webots.termination import Watchdog
+
+    with pytest.raises(mazesim.InvalidArgumentError, match="expected the argument 'run'"):
+        Watchdog(stop=KeyboardInterrupt, stall_seconds=1.0)  # type: ignore[call-arg]

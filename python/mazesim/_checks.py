@@ -94,10 +94,21 @@ SMALLEST_INT, LARGEST_INT = -(1 << 63), (1 << 64) - 1
 _NUMBERS = (int, float, np.integer, np.floating)
 #: The origins of union annotations (``X | Y`` is a ``types.UnionType`` from Python 3.10 on).
 _UNIONS = (typing.Union, getattr(types, "UnionType", typing.Union))
-_CONTAINERS = {list, tuple, set, frozenset, dict}
+#: The built-in containers; one given where a plain value (a number, a text) is annotated is
+#: refused before the call (numpy's ``SeedSequence`` recurses into a list given for a seed in
+#: C, without bound).
+_CONTAINERS = (list, tuple, set, frozenset, dict)
 #: numpy's protocols of array-likes (the parts of ``numpy.typing.ArrayLike``).
 _ARRAY_PROTOCOLS = ("_NestedSequence", "_SupportsArray")
 _ARRAY_LIKE = (np.ndarray, np.generic, abc.Sequence, int, float, complex, bool)
+
+
+def _untestable_protocol(hint: Any) -> bool:
+    """Whether ``hint`` is a protocol that ``isinstance`` cannot test (not runtime-checkable:
+    ``isinstance`` raises TypeError)."""
+    return bool(getattr(hint, "_is_protocol", False)) and not getattr(
+        hint, "_is_runtime_protocol", False
+    )
 
 
 def _is_typeddict(hint: Any) -> bool:
@@ -250,7 +261,7 @@ def _class_refusal(value: Any, hint: type) -> str | None:  # noqa: PLR0911 - one
     elif hint in _CONTAINERS or (hint.__module__ == "collections.abc"):
         return _container_refusal(value, hint, hint, ())
     elif getattr(hint, "_is_protocol", False):
-        if not getattr(hint, "_is_runtime_protocol", False):
+        if _untestable_protocol(hint):
             return None
         ok = isinstance(value, hint)
     else:
@@ -630,6 +641,8 @@ class _Parameters:
             return ""
         if _is_typeddict(hint):  # a TypedDict is any mapping: no value is told as one
             return ""
+        if _untestable_protocol(hint):
+            return ""
         for (name, _), value in zip(self.positional, args):  # noqa: B905 - extras: TypeError
             if isinstance(value, hint):
                 order = ", ".join(known for known, _ in self.positional)
@@ -655,10 +668,13 @@ class _Parameters:
         which the call could read as something else without a word: a bool or a float with a
         fractional part (or not finite) given for an int (``int()`` reads them), an int beyond
         64 bits for an int, a bool for a number (``Robot.step(True)`` is not 1 ms), None or a
-        number for text (``getDevice(None)`` is not the device named "None")."""
+        number for text (``getDevice(None)`` is not the device named "None"); a list, tuple,
+        mapping or set for any of those (C code may read it without bound)."""
         pairs = [*self.positional[: len(args)], *((n, self.by_name.get(n, Any)) for n in kwargs)]
         values = [*args[: len(self.positional)], *kwargs.values()]
         for (name, hint), value in zip(pairs, values):  # noqa: B905 - one value per pair
+            if hint is not Any and isinstance(value, _CONTAINERS) and name in self.plain:
+                self.refuse(name, value, hint)  # a list for a number: C code may recurse into it
             if hint is Any or not isinstance(value, _SCALARS):
                 continue
             if name in self.ints and (
@@ -698,7 +714,7 @@ def checked(func: Callable[..., Any], *, method: bool = False) -> Callable[..., 
     # The wrapper runs in func's globals: everything it uses is bound here.
     error, own, failures, text = InvalidArgumentError, MazesimError, _ARGUMENT_FAILURES, _TEXT
     wrong = WrongTypeError
-    scalars = _SCALARS
+    scalars, containers = _SCALARS, _CONTAINERS
     tree = in_the_tree
     state = STATE  # per thread, whether a checked call is running
 
@@ -713,7 +729,7 @@ def checked(func: Callable[..., Any], *, method: bool = False) -> Callable[..., 
                 break
         if parameters.ints or parameters.plain:  # int(True), float(True), f"{None}": check now
             for value in (*args, *kwargs.values()) if kwargs else args:
-                if isinstance(value, scalars):
+                if isinstance(value, scalars) or isinstance(value, containers):
                     parameters.check_scalars(args, kwargs)
                     break
         state.inside = True

@@ -185,3 +185,31 @@ def test_a_camera_of_an_nue_world_sees_what_the_enu_one_sees(tmp_path: Path, nam
     enu, nue = images
     assert (enu == RED).all(axis=2).any()
     assert np.array_equal(enu, nue)
+
+
+@pytest.mark.parametrize("name", ["seed-maze", "line-follow", "arena"])
+def test_a_tilted_camera_draws_what_it_would_casting_every_pixel_s_ray(
+    name: str, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    # A tilted camera's pixels that meet the floor nearer than the nearest wall cast no ray
+    # (WallBoxes.nearest_distance); the image is the one every pixel's own cast gives, at every
+    # pose, close to a wall too.
+    world = World.builtin(name)
+    walls, floor = WallBoxes(world, sensed=True), FloorPaint(world)
+    rng = np.random.default_rng(7)
+    views = [
+        CameraView(width=96, height=72, pitch=0.35),
+        CameraView(width=64, height=48, pitch=-0.2),
+    ]
+    poses = [(float(x), float(y), float(a)) for x, y, a in rng.uniform(-0.5, 0.5, (6, 3)) * 2]
+    for index in range(0, len(walls.center), max(1, len(walls.center) // 6)):
+        # 2 cm off a wall's face, looking along it or at it.
+        gap = walls.half[index, 0] + 0.02
+        x = walls.center[index, 0] + walls.cos[index] * gap
+        y = walls.center[index, 1] + walls.sin[index] * gap
+        poses.append((float(x), float(y), float(rng.uniform(-3.1, 3.1))))
+    assert any(0.0 < walls.nearest_distance(pose[:2]) < 0.03 for pose in poses)
+    culled = [render(view, walls, floor, pose) for view in views for pose in poses]
+    monkeypatch.setattr(WallBoxes, "nearest_distance", lambda self, point: 0.0)
+    every = [render(view, walls, floor, pose) for view in views for pose in poses]
+    assert all(np.array_equal(a, b) for a, b in zip(culled, every))

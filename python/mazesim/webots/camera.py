@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import math
 import os
+import weakref
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from numbers import Integral
@@ -209,18 +210,23 @@ def render(
     """
     dx, dy, rise = _rays(view, pose[2])
     ox, oy = _lens(view, pose)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        floor_t = np.where(rise < 0.0, view.z / -rise, np.inf)
     if view.pitch == 0.0 and view.axes is None:
         # A level camera: every row of a column casts the same ray along the floor.
         column_t, column_wall = walls.cast_walls((ox, oy), np.stack([dx[0], dy[0]], axis=1))
         wall_t = np.broadcast_to(column_t, rise.shape)
         wall = np.broadcast_to(column_wall, rise.shape)
     else:
-        directions = np.stack([dx.ravel(), dy.ravel()], axis=1)
-        wall_t, wall = walls.cast_walls((ox, oy), directions)
-        wall_t = wall_t.reshape(rise.shape)
-        wall = wall.reshape(rise.shape)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        floor_t = np.where(rise < 0.0, view.z / -rise, np.inf)
+        # Each pixel casts its own ray; one that meets the floor nearer than the nearest wall
+        # is, seen from above, sees the floor whatever wall it would meet: it casts none.
+        reach = floor_t * np.hypot(dx, dy)
+        casts = ~(reach < walls.nearest_distance((ox, oy)))
+        wall_t = np.full(rise.shape, np.inf)
+        wall = np.full(rise.shape, -1, dtype=np.intp)
+        if casts.any():
+            directions = np.stack([dx[casts], dy[casts]], axis=1)
+            wall_t[casts], wall[casts] = walls.cast_walls((ox, oy), directions)
     sees_wall = np.isfinite(wall_t) & (wall_t <= floor_t)
     # A ray that meets no wall (an open side of the world) has no height to compare.
     hit_height = view.z + np.where(np.isfinite(wall_t), wall_t, 0.0) * rise
@@ -236,29 +242,35 @@ def render(
     sees_wall &= ~sees_ball
     sees_robot &= ~sees_ball
     sees_floor = ~sees_wall & ~sees_robot & ~sees_ball & np.isfinite(floor_t)
-    image = np.empty(rise.shape + (4,), dtype=np.uint8)
-    image[...] = (SKY[2], SKY[1], SKY[0], 255)
+    # Each pixel's entry of one palette: the sky, the floor's regions, the walls, a robot's
+    # plate and body, the bodies; the image is then one gather of the palette's colours.
+    floor_colours, wall_colours = _palette_of(floor), _palette_of(walls)
+    body_colours = _levels(
+        np.array([b.reflectance for b in bodies]),
+        np.array([b.colour or (math.nan,) * 3 for b in bodies], dtype=np.float64).reshape(-1, 3),
+        WALL_SHADE,
+    )[:, ::-1]
+    robot_colours = _levels(np.ones(2), np.array([PLATE_COLOUR, ROBOT_COLOUR]), WALL_SHADE)[:, ::-1]
+    sky = np.array([SKY[::-1]], dtype=np.uint8)
+    palette = np.concatenate([sky, floor_colours, wall_colours, robot_colours, body_colours])
+    entry = np.zeros(rise.shape, dtype=np.intp)
+    first_wall = 1 + len(floor_colours)
+    first_robot = first_wall + len(wall_colours)
     if sees_floor.any():
         t = floor_t[sees_floor]
         region = floor.region(ox + t * dx[sees_floor], oy + t * dy[sees_floor]) + 1
-        rgb = _levels(floor.reflectances[region], floor.colours[region], 1.0)
-        image[sees_floor, :3] = rgb[:, ::-1]
+        entry[sees_floor] = 1 + region
     if sees_wall.any():
-        hit = wall[sees_wall]
-        rgb = _levels(walls.reflectance[hit], walls.colour[hit], WALL_SHADE)
-        image[sees_wall, :3] = rgb[:, ::-1]
+        entry[sees_wall] = first_wall + wall[sees_wall]
     if sees_robot.any():
         height = view.z + robot_t[sees_robot] * rise[sees_robot]
         plate = (height >= PLATE_EDGE[0]) & (height <= PLATE_EDGE[1])
-        colour = np.where(plate[:, None], PLATE_COLOUR, ROBOT_COLOUR)
-        rgb = _levels(np.ones(len(height)), colour, WALL_SHADE)
-        image[sees_robot, :3] = rgb[:, ::-1]
+        entry[sees_robot] = np.where(plate, first_robot, first_robot + 1)
     if sees_ball.any():
-        hit = ball[sees_ball]
-        reflectances = np.array([b.reflectance for b in bodies])
-        colours = np.array([b.colour or (math.nan,) * 3 for b in bodies], dtype=np.float64)
-        rgb = _levels(reflectances[hit], colours[hit], WALL_SHADE)
-        image[sees_ball, :3] = rgb[:, ::-1]
+        entry[sees_ball] = first_robot + 2 + ball[sees_ball]
+    image = np.empty(rise.shape + (4,), dtype=np.uint8)
+    image[..., :3] = palette[entry]
+    image[..., 3] = 255
     return image
 
 
@@ -471,6 +483,25 @@ def _height(body: Mapping[str, Any], otherwise: float) -> float:
     """A body's ``height``, or ``otherwise`` for a report without one (a mazesim world's)."""
     height = body.get("height")
     return float(height) if height else otherwise
+
+
+def _palette_of(surfaces: FloorPaint | WallBoxes) -> npt.NDArray[np.uint8]:
+    """Blue, green and red levels ((N, 3)) of the floor's regions (the bare floor first) or of
+    the walls, as a camera sees them; made once per floor or walls."""
+    made = _PALETTES.get(surfaces)
+    if made is None:
+        if isinstance(surfaces, FloorPaint):
+            levels = _levels(surfaces.reflectances, surfaces.colours, 1.0)
+        else:
+            levels = _levels(surfaces.reflectance, surfaces.colour, WALL_SHADE)
+        made = _PALETTES[surfaces] = np.ascontiguousarray(levels[:, ::-1])
+    return made
+
+
+#: The palette of each floor and walls a camera drew (their colours do not change).
+_PALETTES: weakref.WeakKeyDictionary[FloorPaint | WallBoxes, npt.NDArray[np.uint8]] = (
+    weakref.WeakKeyDictionary()
+)
 
 
 def _levels(

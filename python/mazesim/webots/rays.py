@@ -91,6 +91,17 @@ class WallBoxes:
         reflectance = np.where(wall >= 0, self.reflectance[np.maximum(wall, 0)], np.nan)
         return distance, reflectance
 
+    def nearest_distance(self, point: tuple[float, float]) -> float:
+        """The distance from ``point``, seen from above, to the nearest wall (0 inside one;
+        ``inf`` without walls), a hair short of it so that no ray meets a wall nearer."""
+        if self.center.shape[0] == 0:
+            return math.inf
+        ox = point[0] - self.center[:, 0]
+        oy = point[1] - self.center[:, 1]
+        out_x = np.maximum(np.abs(self.cos * ox + self.sin * oy) - self.half[:, 0], 0.0)
+        out_y = np.maximum(np.abs(-self.sin * ox + self.cos * oy) - self.half[:, 1], 0.0)
+        return float(np.min(np.hypot(out_x, out_y))) * (1.0 - 1e-9)
+
     def cast_walls(
         self, origin: tuple[float, float], directions: Floats
     ) -> tuple[Floats, npt.NDArray[np.intp]]:
