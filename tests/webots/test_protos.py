@@ -671,3 +671,28 @@ def test_a_sample_world_of_a_webots_tree_reads_its_projects_protos_from_that_tre
     assert report["protos"]["expanded"] == {"Pillar": str(curriculum / "protos" / "Pillar.proto")}
     assert _boxes(report) == [([0.2, 0.1], [0.04, 0.06])]
     assert not [w for w in report["warnings"] if "unknown PROTO" in w]
+
+
+def test_an_is_naming_a_field_the_proto_does_not_declare_is_left_unlinked(
+    tmp_path: Path,
+) -> None:
+    # A course's copy of Webots' R2020b RobotisLds01 gives a CapScrew `enablePhysics IS physics`
+    # without declaring `physics`; Webots (WbNode::createProtoInstance: copyAliasValue finds no
+    # parameter of that name) leaves the field unlinked and loads the world, the inner node
+    # keeping its default. The import did the same, where it stopped with WorldFormatError.
+    (tmp_path / "protos").mkdir()
+    (tmp_path / "worlds").mkdir()
+    (tmp_path / "protos" / "Post.proto").write_text(
+        "#VRML_SIM R2023b utf8\nPROTO Post [\n  field SFVec3f translation 0 0 0\n"
+        "  field SFVec3f side 0.1 0.1 0.1\n]\n{\n  Solid {\n    translation IS translation\n"
+        "    name IS label\n    boundingObject Box { size IS side }\n  }\n}\n"
+    )
+    (tmp_path / "worlds" / "w.wbt").write_text(
+        '#VRML_SIM R2023b utf8\nEXTERNPROTO "../protos/Post.proto"\nRectangleArena { }\n'
+        "Post { translation 0.3 0 0 }\nE-puck { }\n"
+    )
+    _, report = import_wbt(tmp_path / "worlds" / "w.wbt")
+    (post,) = [o for o in report["obstacles"] if o["center"] == [0.3, 0.0]]
+    assert post["size"] == [0.1, 0.1]
+    (said,) = [w for w in report["warnings"] if "IS label" in w]
+    assert "Post has no field `label`; left unlinked, as in Webots" in said

@@ -580,12 +580,21 @@ class CameraRecognitionObject:
     get_id = getId
     get_position = getPosition
     get_orientation = getOrientation
-    get_size = getSize
+
+    def get_size(self) -> list[int]:
+        """The object's size as the SWIG-made API before R2023a gave it: each metre figure
+        truncated to an int (its ``PyInt_FromLong(size[i])``; 0 for an object under 1 m)."""
+        return [int(v) for v in self.size]
+
     get_position_on_image = getPositionOnImage
     get_size_on_image = getSizeOnImage
     get_number_of_colors = getNumberOfColors
     get_colors = getColors
-    get_model = getModel
+
+    def get_model(self) -> bytes:
+        """The object's ``model`` field as bytes, as the SWIG-made API before R2023a gave it
+        (``PyBytes_FromStringAndSize``; controllers of then call ``get_model().decode()``)."""
+        return self.model.encode("utf-8")
 
 
 class Camera(_Sensor):

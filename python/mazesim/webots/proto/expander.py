@@ -18,7 +18,7 @@ from .definition import ProtoDefinition, externproto_urls, parse_definition
 from .own_robot import OWN_ROBOT_TYPES, added_devices, outermost, with_devices
 from .resolver import ProtoSource, ProtoUnavailableError, Resolver
 from .stand_ins import STAND_INS
-from .syntax import Node, line_of, located_error, parse_nodes, tokenize
+from .syntax import Node, line_of, parse_nodes, tokenize
 from .templates import evaluate_template
 from .values import field_value
 
@@ -317,8 +317,11 @@ class Expander:
             "coordinate_system": "NUE" if self.y_up else "ENU",
         }
 
-    @staticmethod
-    def _substitute(body: str, values: dict[str, str], definition: ProtoDefinition) -> str:
+    def _substitute(self, body: str, values: dict[str, str], definition: ProtoDefinition) -> str:
+        """``body`` with each ``field IS name`` given the instance's value of ``name``. One
+        naming a field the PROTO does not declare is left unlinked, as Webots leaves it
+        (``WbNode::createProtoInstance`` finds no parameter to copy): the field is dropped and
+        keeps its node's default, with a warning."""
         nodes = parse_nodes(body, definition.origin)
         replacements: list[tuple[int, int, str]] = []
 
@@ -327,10 +330,13 @@ class Expander:
                 target = item.is_reference
                 if target is not None:
                     if target not in values:
-                        raise located_error(
-                            f"`{item.name} IS {target}`: {definition.name} has no field `{target}`",
-                            definition.origin,
+                        self._say(
+                            f"{definition.origin}: `{item.name} IS {target}`: {definition.name} "
+                            f"has no field `{target}`; left unlinked, as in Webots: "
+                            f"{node.type_name}'s `{item.name}` keeps its default"
                         )
+                        replacements.append((item.start, item.value_end, ""))
+                        continue
                     replacements.append((item.value_start, item.value_end, values[target]))
                 for child in item.nodes:
                     walk(child)

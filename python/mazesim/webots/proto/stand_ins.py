@@ -34,6 +34,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from .furniture import ARMCHAIR, DESK, SOFA, WINDOW, WOODEN_CHAIR
+from .small_objects import SMALL_OBJECTS, stand_in_text
 
 __all__ = ["STAND_INS", "StandIn"]
 
@@ -490,4 +491,9 @@ STAND_INS: dict[str, StandIn] = {
         _SOLID_TORUS,
         "a ring of `subdivision` spheres of the minor radius on the circle of the major radius",
     ),
+    # Webots' small stock objects, written as data (small_objects.py).
+    **{
+        name: StandIn(stand_in_text(name, thing), thing.description)
+        for name, thing in SMALL_OBJECTS.items()
+    },
 }
