@@ -20,12 +20,13 @@ marker).
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Union
 
 __all__ = ["SMALL_OBJECTS", "Part", "SmallObject", "stand_in_text"]
 
 #: A number of a part: a float, or a JavaScript expression of the PROTO's fields and ``k``, the
 #: object's ``scale`` (1 for an object without one).
-Number = float | str
+Number = Union[float, str]
 
 
 @dataclass(frozen=True)
