@@ -22,6 +22,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Union
 
+from mazesim.errors import InvalidArgumentError, _shown
+
 __all__ = ["SMALL_OBJECTS", "Part", "SmallObject", "stand_in_text"]
 
 #: A number of a part: a float, or a JavaScript expression of the PROTO's fields and ``k``, the
@@ -86,7 +88,9 @@ def _part_text(part: Part, scaled: bool, colour: str = "") -> str:
     elif part.kind == "sphere":
         geometry = f"Sphere {{ radius %<= {size[0]} >% }}"
     else:
-        raise ValueError(f"part kind {part.kind!r}: expected box, cylinder or sphere")
+        raise InvalidArgumentError(
+            f"part kind {_shown(part.kind)}: expected box, cylinder or sphere"
+        )
     if colour:
         look = f"PBRAppearance {{ baseColor {colour} roughness 1 metalness 0 }}"
         geometry = f"Shape {{ appearance {look} geometry {geometry} }}"
@@ -119,7 +123,7 @@ def stand_in_text(name: str, thing: SmallObject) -> str:
     return f"""#VRML_SIM R2023b utf8
 # template language: javascript
 PROTO {name} [
-  field SFVec3f translation 0 0 {thing.lift!r}
+  field SFVec3f translation 0 0 {repr(thing.lift)}
   field SFRotation rotation 0 0 1 0
   field SFString name "{thing.label}"
 {declared}
