@@ -714,7 +714,7 @@ def checked(func: Callable[..., Any], *, method: bool = False) -> Callable[..., 
     # The wrapper runs in func's globals: everything it uses is bound here.
     error, own, failures, text = InvalidArgumentError, MazesimError, _ARGUMENT_FAILURES, _TEXT
     wrong = WrongTypeError
-    scalars, containers = _SCALARS, _CONTAINERS
+    scalars_or_containers = _SCALARS + _CONTAINERS
     tree = in_the_tree
     state = STATE  # per thread, whether a checked call is running
 
@@ -729,7 +729,7 @@ def checked(func: Callable[..., Any], *, method: bool = False) -> Callable[..., 
                 break
         if parameters.ints or parameters.plain:  # int(True), float(True), f"{None}": check now
             for value in (*args, *kwargs.values()) if kwargs else args:
-                if isinstance(value, scalars) or isinstance(value, containers):
+                if isinstance(value, scalars_or_containers):
                     parameters.check_scalars(args, kwargs)
                     break
         state.inside = True
