@@ -87,11 +87,6 @@ PYTHON_ONLY = {
     "GPS.getLookupTable": "a GPS node has no lookup table",
     "InertialUnit.getLookupTable": "an InertialUnit node has no lookup table",
     "InertialUnit.getValues": "Webots' InertialUnit reads getRollPitchYaw",
-    "Lidar.getValue": "Webots' Lidar reads range images",
-    "Display.enable": "a Display is not sampled",
-    "Display.disable": "a Display is not sampled",
-    "Display.getValue": "a Display has no reading",
-    "Display.getSamplingPeriod": "a Display is not sampled",
     # mazesim's own: how a node is made from the world, and the values the C library is served.
     "Node.from_scene": "mazesim's constructor",
     **{

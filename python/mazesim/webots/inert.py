@@ -20,7 +20,7 @@ from types import SimpleNamespace
 from typing import TYPE_CHECKING, Any
 
 from mazesim.errors import _shown
-from mazesim.webots.devices import Device, _ScalarSensor
+from mazesim.webots.devices import Device, _ScalarSensor, _Sensor
 from mazesim.webots.node_types import node_type
 from mazesim.webots.webots_api import NotSimulated
 
@@ -47,8 +47,9 @@ __all__ = [
 ]
 
 
-class _Inert(_ScalarSensor):
-    """A device the e-puck does not carry: enable/disable work, readings are NaN."""
+class _Inert(_Sensor):
+    """A sensor the e-puck does not carry: enable/disable work, readings are NaN. Its getters
+    are its Webots class's own (a Lidar has no ``getValue``, as in Webots)."""
 
     def _read(self) -> float:
         return math.nan
@@ -138,7 +139,7 @@ class Speaker(Device):
         return self._language
 
 
-class Display(_Inert):
+class Display(Device):
     """A display: one the world puts in an extension slot has its node's width and height,
     and its drawings are accepted and dropped (mazesim has no view to show it on), as the C
     library's ``wb_display_*`` functions do; without one (the e-puck has none) its size is 0.
@@ -235,7 +236,7 @@ class Display(_Inert):
         """Accepted."""
 
 
-class Pen(_Inert):
+class Pen(Device):
     """A pen (the e-puck has none)."""
 
     _node_type = node_type("PEN")
@@ -349,7 +350,7 @@ class RadarTarget:
         self.azimuth = math.nan
 
 
-class Connector(_Inert):
+class Connector(Device):
     """A connector (the e-puck has none)."""
 
     _node_type = node_type("CONNECTOR")
@@ -372,13 +373,13 @@ class Brake(Device):
     LINEAR = 1
 
 
-class Altimeter(_Inert):
+class Altimeter(_Inert, _ScalarSensor):
     """An altimeter (the e-puck has none)."""
 
     _node_type = node_type("ALTIMETER")
 
 
-class VacuumGripper(_Inert):
+class VacuumGripper(Device):
     """A vacuum gripper (the e-puck has none)."""
 
     _node_type = node_type("VACUUM_GRIPPER")
@@ -388,7 +389,7 @@ class VacuumGripper(_Inert):
         return False
 
 
-class Skin(_Inert):
+class Skin(Device):
     """A skin (the e-puck has none)."""
 
     _node_type = node_type("SKIN")
