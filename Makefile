@@ -114,10 +114,12 @@ test: build dev-deps ros-deps ros2-deps ros2-peer browser-deps display-deps docs
 # of the public surface (docs/reliability.md).
 FUZZ_CASES ?= 20000
 FUZZ_CALLS ?= 5
+FUZZ_WORLD_RUNS ?= 200
 
-fuzz: build dev-deps ## fuzz the readers (FUZZ_CASES inputs each) and every public entry point (FUZZ_CALLS hostile calls each)
+fuzz: build dev-deps ## fuzz the readers (FUZZ_CASES inputs each), every public entry point (FUZZ_CALLS hostile calls each) and FUZZ_WORLD_RUNS mutated Webots worlds run whole
 	PROPTEST_CASES=$(FUZZ_CASES) cargo test -p mazesim-core --release --test parser_fuzz --test wbt_fuzz
 	MAZESIM_SURFACE=all MAZESIM_SURFACE_CALLS=$(FUZZ_CALLS) $(BIN)/python -m pytest tests/test_public_surface.py
+	MAZESIM_WORLD_RUNS=$(FUZZ_WORLD_RUNS) $(BIN)/python -m pytest -n 2 tests/webots/test_world_run_fuzz.py
 
 demo: build ## the shipped hierarchical navigator drives seed-maze to its goal; writes mazesim-demo/ (replay.html: watch it)
 	$(BIN)/mazesim demo --controller hrl --out mazesim-demo --html mazesim-demo/replay.html

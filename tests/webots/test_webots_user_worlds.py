@@ -13,6 +13,7 @@ import pytest
 import mazesim
 from mazesim.webots import controller, prepare
 from mazesim.webots import simulation as simulations
+from mazesim.webots.devices import discretize
 from mazesim.webots.importer import import_wbt, import_wbt_text
 from mazesim.webots.scene import read_scene
 from mazesim_process import mazesim_command
@@ -329,6 +330,25 @@ def test_wheel_sensors_start_where_a_saved_world_left_the_wheels() -> None:
     simulations.release()
     fresh = read_scene(SAVED_EPUCK.replace("hidden", "# hidden"))
     assert fresh.wheel_positions == (0.0, 0.0)
+
+
+def test_a_saved_wheel_position_beyond_a_whole_number_of_steps_reads_as_it_is() -> None:
+    # 1e308 rad to a resolution of 2 pi / 1000 is more steps than a number holds: the wheel
+    # sensor reads the saved value (the rounding raised OverflowError from inside mazesim).
+    scene = read_scene(SAVED_EPUCK.replace("12.3", "1e308"), "E-puck", 4)
+    prepare(mazesim.load_world("arena"), seconds=5.0, noise=False, scene=scene)
+    controller.Robot.created = None
+    robot = controller.Robot()
+    sensor = robot.getDevice("left wheel sensor")
+    sensor.enable(32)
+    left = robot.getDevice("left wheel motor")
+    left.setPosition(float("inf"))
+    left.setVelocity(1.0)
+    for _ in range(3):
+        assert robot.step(32) != -1
+    assert sensor.getValue() == 1e308
+    simulations.release()
+    assert discretize(1e308, 0.001) == 1e308 and discretize(-0.7, 1.0) == 0.0
 
 
 def test_a_world_written_compactly_by_hand_gives_the_robots_arguments() -> None:

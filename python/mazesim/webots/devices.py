@@ -396,10 +396,12 @@ def battery_ran_out(simulation: RobotSimulation) -> bool:
 def discretize(value: float, resolution: float) -> float:
     """``value`` to a sensor's ``resolution`` as Webots rounds it
     (``WbMathsUtilities::discretize``: ``int(value / resolution + 0.5) * resolution``, the cast
-    truncating towards 0, so that -0.7 of a step reads 0); NaN and infinities as they are."""
-    if not math.isfinite(value):
+    truncating towards 0, so that -0.7 of a step reads 0); NaN and infinities as they are, and
+    a value too far out for a whole number of steps to hold (1e308 to a resolution of 0.01)."""
+    steps = value / resolution + 0.5
+    if not math.isfinite(steps):
         return value
-    return math.trunc(value / resolution + 0.5) * resolution
+    return math.trunc(steps) * resolution
 
 
 class _Sensor(Sampled, Device):

@@ -444,14 +444,16 @@ class RobotSimulation:
     def wheel_angles(self) -> tuple[float, float]:
         """The left and right wheel joints' positions (rad), as Webots' wheel sensors read them:
         where the world file left them (:attr:`Scene.wheel_positions`, 0 in a fresh world) plus
-        the turns since the start or the world's last reset, to the encoders' resolution."""
+        the turns since the start or the world's last reset, to the encoders' resolution (an
+        angle too far out for a whole number of steps, a saved 1e308, as it is)."""
         resolution = float(self.simulator.robot.encoder_resolution)
         angles = []
         turns = zip(self.scene.wheel_positions, self.simulator.encoders, self.last_reset.turns)
         for start, turned, before in turns:
             angle = start + (float(turned) - before)
-            if start and resolution > 0.0:
-                angle = round(angle / resolution) * resolution
+            steps = angle / resolution if resolution > 0.0 else math.nan
+            if start and math.isfinite(steps):
+                angle = round(steps) * resolution
             angles.append(angle)
         return angles[0], angles[1]
 
