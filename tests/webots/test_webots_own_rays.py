@@ -192,3 +192,28 @@ def test_what_the_2d_model_leaves_out_of_a_sensor_type_is_said() -> None:
     assert (
         own_sensors("e-puck", read_scene(ARENA + expanded_e_puck(sensor_type=None))).warnings == []
     )
+
+
+def test_a_sensor_of_the_world_reads_its_far_value_in_a_world_without_walls() -> None:
+    # A Floor and no wall: the extension sensor's rays meet nothing (the cast took a wall's
+    # reflectance from an empty table and stopped the first step with IndexError).
+    from mazesim.webots.importer import import_wbt_text
+
+    text = (
+        "#VRML_SIM R2023b utf8\nWorldInfo { basicTimeStep 32 }\nFloor { }\n"
+        'E-puck { turretSlot [ DistanceSensor { translation 0.03 0 0 name "front" '
+        "lookupTable [ 0 0 0, 0.2 200 0 ] } ] }\n"
+    )
+    world, report = import_wbt_text(text, "bare.wbt")
+    assert len(world.wall_boxes()) == 0
+    scene = read_scene(text, report.get("robot_model"), report.get("robot_line"))
+    prepare(world, seconds=1.0, noise=False, report=report, scene=scene)
+    try:
+        robot = controller.Robot()
+        front = robot.getDevice("front")
+        front.enable(32)
+        assert robot.step(32) != -1
+        assert front.getValue() == 200.0
+    finally:
+        controller.Robot.created = None
+        simulations.release()

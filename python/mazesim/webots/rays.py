@@ -88,6 +88,8 @@ class WallBoxes:
             none).
         """
         distance, wall = self.cast_walls(origin, directions)
+        if self.reflectance.shape[0] == 0:  # no wall: every ray meets none
+            return distance, np.full(distance.shape, np.nan)
         reflectance = np.where(wall >= 0, self.reflectance[np.maximum(wall, 0)], np.nan)
         return distance, reflectance
 
