@@ -581,3 +581,67 @@ def test_globals_a_shared_header_defines_link_as_before_gcc_10(
     run = run_controller(source, mazesim.load_world("arena"), seconds=0.2)
     assert (run.exit_status, run.error) == (0, "")
     assert capfd.readouterr().out.splitlines()[-1] == "steps 2"
+
+
+#: Webots 8's DifferentialWheels e-puck: setSpeed in speed units, encoders in encoder units,
+#: clamped speeds, encoders set mid-run; a Python twin of the C controller below.
+DIFFERENTIAL_WHEELS_PY = """
+from controller import DifferentialWheels
+
+class EPuck(DifferentialWheels):
+    pass
+
+robot = EPuck()
+robot.enableEncoders(32)
+print("unit", robot.getSpeedUnit(), "max", robot.getMaxSpeed())
+step = 0
+while robot.step(32) != -1:
+    step += 1
+    robot.setSpeed(1500 if step < 20 else -300, 400)
+    if step == 25:
+        robot.setEncoders(10.0, -5.0)
+    print("%d %.6f %.6f %.1f %.1f %d" % (step, robot.getLeftEncoder(), robot.getRightEncoder(),
+          robot.getLeftSpeed(), robot.getRightSpeed(), robot.getEncodersSamplingPeriod()))
+"""
+DIFFERENTIAL_WHEELS_C = """#include <stdio.h>
+#include <webots/robot.h>
+#include <webots/differential_wheels.h>
+int main(void) {
+  wb_robot_init();
+  wb_differential_wheels_enable_encoders(32);
+  printf("unit %g max %g\\n", wb_differential_wheels_get_speed_unit(),
+         wb_differential_wheels_get_max_speed());
+  int step = 0;
+  while (wb_robot_step(32) != -1) {
+    step++;
+    wb_differential_wheels_set_speed(step < 20 ? 1500 : -300, 400);
+    if (step == 25)
+      wb_differential_wheels_set_encoders(10.0, -5.0);
+    printf("%d %.6f %.6f %.1f %.1f %d\\n", step, wb_differential_wheels_get_left_encoder(),
+           wb_differential_wheels_get_right_encoder(), wb_differential_wheels_get_left_speed(),
+           wb_differential_wheels_get_right_speed(),
+           wb_differential_wheels_get_encoders_sampling_period());
+  }
+  wb_robot_cleanup();
+  return 0;
+}
+"""
+
+
+def test_webots_8_differential_wheels_drives_alike_in_python_and_c(
+    tmp_path: Path, capfd: pytest.CaptureFixture[str]
+) -> None:
+    c_source = write_source(tmp_path, "dw_c", DIFFERENTIAL_WHEELS_C)
+    python_source = write_source(tmp_path, "dw_py", DIFFERENTIAL_WHEELS_PY, ".py")
+    (in_c, in_python), (c_out, python_out) = run_twins(
+        capfd, c_source, python_source, seconds=1.6, noise=False
+    )
+    assert (in_c.exit_status, in_python.exit_status) == (0, 0), in_python.error
+    assert in_c.xs == in_python.xs and in_c.final_pose == in_python.final_pose
+    assert c_out.splitlines()[1:] == python_out.splitlines()[1:]
+    assert python_out.splitlines()[0] == "unit 0.00628 max 1000.0"
+    rows = [line.split() for line in python_out.splitlines()[1:]]
+    assert rows[0][3:] == ["1000.0", "400.0", "32"], "1500 clamped to the e-puck's 1000"
+    assert float(rows[18][1]) > float(rows[18][2]) > 0, "the left wheel turned faster"
+    assert float(rows[24][1]) == pytest.approx(10.0) and float(rows[24][2]) == pytest.approx(-5.0)
+    assert in_python.distance_m > 0.05

@@ -16,7 +16,8 @@ controller's ``from controller import Robot`` (or ``from controller import *``) 
 
 Every class of Webots' module can be imported, from the package or, as Webots R2023b and later
 ship it, from its own submodule (``from controller.distance_sensor import DistanceSensor``); both
-give the same class. The e-puck's devices are simulated (see
+give the same class; Webots 8's ``DifferentialWheels``, the e-puck's class before R2018a, too
+(:mod:`mazesim.webots.differential_wheels`). The e-puck's devices are simulated (see
 :mod:`mazesim.webots.equipment` for the list), devices in the world's extension slots too; the
 rest answers with Webots' values for a missing device. ``Robot.step`` returns -1 once the run's
 time is up; a controller that steps again after that is stopped, as Webots stops it.
@@ -27,9 +28,10 @@ from __future__ import annotations
 import sys
 from types import ModuleType
 
-from mazesim.errors import UnknownNameError, _shown
+from mazesim.errors import _shown
 from mazesim.webots.camera import Camera, CameraRecognitionObject
 from mazesim.webots.devices import LED, Device, DistanceSensor, Motor, PositionSensor, _Sensor
+from mazesim.webots.differential_wheels import DifferentialWheels
 from mazesim.webots.field import Field
 from mazesim.webots.inert import (
     Altimeter,
@@ -123,6 +125,7 @@ __all__ = [
     "ContactPoint",
     "ControllerStopped",
     "Device",
+    "DifferentialWheels",
     "Display",
     "DistanceSensor",
     "Emitter",
@@ -168,22 +171,9 @@ for _name, _classes in {**SUBMODULE_CLASSES, **BASE_SUBMODULE_CLASSES}.items():
 
 
 def __getattr__(name: str) -> object:
-    """Refuses, saying what to use instead, the classes of Webots before R2018a that the module
-    does not have (``from controller import DifferentialWheels``).
+    """A name the module lacks.
 
     Raises:
-        UnknownNameError: ``DifferentialWheels``, the node of the e-puck before R2018a, which
-            Webots deprecated with "Please use the Robot node instead with two HingeJoint,
-            RotationalMotor and PositionSensor nodes".
-        AttributeError: Any other name the module lacks.
+        AttributeError: Always, in the words of Webots' own module.
     """
-    if name == "DifferentialWheels":
-        raise UnknownNameError(
-            "controller.DifferentialWheels: the e-puck of Webots before R2018a, which Webots "
-            "deprecated and mazesim does not have; the e-puck is a Robot with two motors: "
-            "robot = Robot(), robot.getDevice('left wheel motor') and 'right wheel motor', "
-            "setPosition(float('inf')) then setVelocity(rad/s) for setSpeed (speed units of "
-            "0.00628 rad/s: setVelocity(0.00628 * speed)), and the encoders 'left wheel "
-            "sensor' and 'right wheel sensor' in radians"
-        )
     raise AttributeError(f"module 'controller' has no attribute {_shown(name)}")
