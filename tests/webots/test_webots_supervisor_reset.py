@@ -125,3 +125,18 @@ def test_a_supervisor_resets_a_world_of_several_robots(
     # Its motors back in position control, the pusher, whose controller set its speed once,
     # stays at its start, as in Webots.
     assert seen["pusher_end"] == pytest.approx([-0.2, 0.0, 0.0], abs=1e-6)
+
+
+def test_webots_8_names_revert_the_world_and_reset_its_physics(tmp_path: Path) -> None:
+    # Webots 8's simulationRevert and simulationPhysicsReset, as its supervisors call them.
+    supervisor = supervisor_of(tmp_path)
+    box = supervisor.getFromDef("BOX")
+    box.setVelocity([0.0, -0.5, 0.0, 0.0, 0.0, 0.0])
+    supervisor.simulationPhysicsReset()
+    assert box.getVelocity() == pytest.approx([0.0] * 6)
+    push_the_box(supervisor)
+    supervisor.simulationRevert()  # in a run of one controller: a reset, the controller goes on
+    supervisor.step(32)
+    assert simulations.current().simulator.pose == pytest.approx((0.0, 0.0, 0.0), abs=1e-6)
+    assert box.getPosition() == pytest.approx([0.3, 0.3, 0.02], abs=1e-6)
+    assert supervisor.getTime() == 0.0

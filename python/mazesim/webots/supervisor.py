@@ -1011,6 +1011,16 @@ class Supervisor(Robot):
         for index in range(len(objects.body_poses())):
             objects.set_body_velocity(index, 0.0, 0.0, 0.0)
 
+    def simulationPhysicsReset(self) -> None:
+        """Webots 8's name of :meth:`simulationResetPhysics` (the C library's
+        ``wb_supervisor_simulation_physics_reset``)."""
+        self.simulationResetPhysics()
+
+    def simulationRevert(self) -> None:
+        """Webots 8's name of :meth:`worldReload` (the C library's
+        ``wb_supervisor_simulation_revert``)."""
+        self.worldReload()
+
     def simulationGetMode(self) -> int:
         """The mode set last (fast by default: a headless run runs as fast as it can)."""
         return self._mode
