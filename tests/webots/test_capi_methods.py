@@ -24,6 +24,7 @@ from test_capi_devices import WITHOUT_C
 from mazesim.webots import controller
 from mazesim.webots.devices import Device
 from mazesim.webots.native_controller import CAPI
+from mazesim.webots.webots_api import WebotsClass, webots_classes
 from native_controllers import NEEDS_COMPILERS, run_twins
 
 HEADERS = CAPI / "include" / "webots"
@@ -109,6 +110,8 @@ def snake(method: str) -> str:
 def c_prefix(name: str) -> str:
     if name in ("Node", "Field"):
         return f"wb_supervisor_{name.lower()}_"
+    if name == "DifferentialWheels":
+        return "wb_differential_wheels_"
     module = next(m for m, names in controller.SUBMODULE_CLASSES.items() if name in names)
     return f"wb_{module}_"
 
@@ -117,7 +120,7 @@ def own_methods(cls: type) -> list[str]:
     """The public methods a class of the Python module defines or inherits from mazesim's
     classes, but those of its base class of the module (Device, Robot), checked there."""
     base = Device if issubclass(cls, Device) and cls is not Device else None
-    if cls is controller.Supervisor:
+    if cls in (controller.Supervisor, controller.DifferentialWheels):
         base = controller.Robot
     names = []
     for name in dir(cls):
@@ -135,7 +138,8 @@ def own_methods(cls: type) -> list[str]:
 def python_methods() -> list[tuple[str, str]]:
     """(class, method) of every public method of the classes with C functions."""
     pairs = []
-    for names in controller.SUBMODULE_CLASSES.values():
+    # Webots 8's DifferentialWheels has no submodule (Webots 8's module had none).
+    for names in [*controller.SUBMODULE_CLASSES.values(), ("DifferentialWheels",)]:
         for name in names:
             cls = getattr(controller, name)
             if name not in WITHOUT_FUNCTIONS:
@@ -256,6 +260,33 @@ def test_every_declared_c_function_is_defined_in_the_library() -> None:
     # <webots/radio.h> is declared only, on purpose: see its comment.
     radio = set(re.findall(r"\b(wb_radio_\w+)\s*\(", (HEADERS / "radio.h").read_text()))
     assert sorted(declared_c_functions() - defined - radio) == []
+
+
+#: C functions without a Python method, and why.
+C_ONLY = {
+    "wb_robot_init": "C's start of a controller (Python's Robot() does it)",
+    "wb_robot_cleanup": "C's end of a controller (Python's process exit does it)",
+    "wb_robot_get_supervisor": "C's test of the robot's kind (Python's class says it)",
+    "wb_device_get_type": "an older name of wb_device_get_node_type, whose Python name "
+    "getType is a DistanceSensor's and a TouchSensor's sensor type",
+    **{
+        f"wb_{device}_get_lookup_table_size": "C reads the table's length apart from its rows"
+        for device in ("accelerometer", "compass", "distance_sensor", "gyro", "light_sensor",
+                       "touch_sensor")
+    },
+}  # fmt: skip
+
+
+def test_every_c_function_has_its_python_method() -> None:
+    # A C function without a Python method is a call a C controller makes that its Python
+    # twin cannot (Webots 8's DifferentialWheels was once C only).
+    radio = set(re.findall(r"\b(wb_radio_\w+)\s*\(", (HEADERS / "radio.h").read_text()))
+    # A method of Webots' table the class does not define answers as not simulated, in C too.
+    none = WebotsClass(frozenset(), {}, frozenset())
+    answered = {(n, m) for n, _ in PAIRS for m in webots_classes().get(n, none).methods}
+    mapped = {c_name(name, method) for name, method in set(PAIRS) | answered}
+    assert sorted(declared_c_functions() - mapped - radio - set(C_ONLY)) == []
+    assert set(C_ONLY) <= declared_c_functions()
 
 
 @NEEDS_COMPILERS
