@@ -217,3 +217,45 @@ def test_a_sensor_of_the_world_reads_its_far_value_in_a_world_without_walls() ->
     finally:
         controller.Robot.created = None
         simulations.release()
+
+
+def test_a_device_size_beyond_what_mazesim_simulates_is_cut_with_a_warning(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    # A camera 2^31 pixels wide asked for 16 GiB at its first image (the run was killed);
+    # each size field beyond MAX_DEVICE_SIDE is cut to it, saying so.
+    from mazesim.webots.devices import MAX_DEVICE_SIDE
+    from mazesim.webots.importer import import_wbt_text
+
+    text = (
+        "#VRML_SIM R2023b utf8\nWorldInfo { basicTimeStep 32 }\nFloor { }\n"
+        "E-puck { camera_width 1e9 turretSlot [\n"
+        '  Camera { name "big" width 2147483648 height 2 }\n'
+        '  Lidar { name "lidar" horizontalResolution 1e12 numberOfLayers 1 }\n'
+        '  RangeFinder { name "depth" width 3 height 100000000 }\n'
+        '  Display { name "screen" width 1e15 height 4 }\n] }\n'
+    )
+    world, report = import_wbt_text(text, "huge.wbt")
+    scene = read_scene(text, report.get("robot_model"), report.get("robot_line"))
+    prepare(world, seconds=1.0, noise=False, report=report, scene=scene)
+    try:
+        robot = controller.Robot()
+        big, lidar, depth = (robot.getDevice(n) for n in ("big", "lidar", "depth"))
+        assert (big.getWidth(), big.getHeight()) == (MAX_DEVICE_SIDE, 2)
+        assert robot.getDevice("camera").getWidth() == MAX_DEVICE_SIDE
+        assert lidar.getHorizontalResolution() == MAX_DEVICE_SIDE
+        assert (depth.getWidth(), depth.getHeight()) == (3, MAX_DEVICE_SIDE)
+        assert robot.getDevice("screen").getWidth() == MAX_DEVICE_SIDE
+        for device in (big, lidar, depth):
+            device.enable(32)
+        assert robot.step(32) != -1
+        assert len(big.getImage()) == MAX_DEVICE_SIDE * 2 * 4
+        assert len(lidar.getRangeImage()) == MAX_DEVICE_SIDE
+        warned = capsys.readouterr().err
+        for what in ("Camera 'big' width 2147483648", "camera_width 1000000000",
+                     "Lidar 'lidar' horizontalResolution", "RangeFinder 'depth' height",
+                     "Display 'screen' width"):  # fmt: skip
+            assert f"{what}" in warned and f"taken as {MAX_DEVICE_SIDE}" in warned, what
+    finally:
+        controller.Robot.created = None
+        simulations.release()

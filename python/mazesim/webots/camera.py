@@ -31,7 +31,7 @@ import numpy.typing as npt
 
 from mazesim._hot_paths import checks_own_arguments
 from mazesim.errors import InvalidArgumentError, WrongTypeError, _shown
-from mazesim.webots.devices import _print_error, _Sensor, sampling_period
+from mazesim.webots.devices import _print_error, _Sensor, device_side, sampling_period
 from mazesim.webots.frames import Axes, axes_or_none, camera_heading
 from mazesim.webots.node_types import node_type
 from mazesim.webots.rays import FloorPaint, WallBoxes
@@ -168,9 +168,10 @@ def node_view(entry: Mapping[str, Any], y_up: bool, mount: Mount | None = None) 
         yaw, pitch = camera_heading(looks[0])
     elif mount is not None:
         x, y, z = mount.point((x, y, z))
+    named = f"Camera {_shown(str(entry.get('name', 'camera')))}"
     return CameraView(
-        width=max(1, int(fields.get("width", 64))),
-        height=max(1, int(fields.get("height", 64))),
+        width=device_side(fields.get("width"), 64, f"{named} width"),
+        height=device_side(fields.get("height"), 64, f"{named} height"),
         fov=float(fields.get("fieldOfView", 0.7854)),
         x=x,
         y=y,

@@ -55,6 +55,29 @@ def _print_error(message: str) -> None:
 
 #: The longest sampling period Webots takes: its ``enable`` functions take a C ``int`` of ms.
 MAX_SAMPLING_PERIOD_MS = 2**31 - 1
+#: The most pixels of a side of a camera's, range finder's or display's image, and the most
+#: points or layers of a lidar, that mazesim simulates; a world's larger field is cut to it with
+#: a warning (a ``width 2147483648`` would ask for gigabytes at the first image).
+MAX_DEVICE_SIDE = 4096
+
+
+def device_side(value: Any, default: int, what: str, smallest: int = 1) -> int:
+    """A device's size field as a whole number of pixels, points or layers: ``value`` (a number
+    of the world file, None where the node has none: ``default``), at least ``smallest`` and at
+    most :data:`MAX_DEVICE_SIDE`; ``what`` names it in the warning a larger one (or one that is
+    no finite number) prints, e.g. ``Camera "camera" width``."""
+    number = float(default if value is None else value)
+    if not math.isfinite(number) or number > MAX_DEVICE_SIDE:
+        shown = f"{number:.12g}"
+        number = MAX_DEVICE_SIDE if number > 0 else default
+        print(
+            f"mazesim: warning: {what} {shown}: more than the {MAX_DEVICE_SIDE} mazesim "
+            f"simulates, or no number; taken as {int(number)}",
+            file=sys.stderr,
+        )
+    return max(smallest, int(number))
+
+
 #: A motor's ``maxTorque`` (N m) where its node does not set it: Webots' RotationalMotor
 #: default, which the E-puck PROTO keeps.
 MAX_TORQUE = 10.0

@@ -28,6 +28,7 @@ from mazesim.webots.devices import (
     Motor,
     PositionSensor,
     _Sensor,
+    device_side,
 )
 from mazesim.webots.inert import Display, Pen, Speaker
 from mazesim.webots.joints import JointMotor, JointPositionSensor, LinearJointMotor, pair_joints
@@ -224,7 +225,10 @@ def extension_device(simulation: RobotSimulation, entry: Mapping[str, Any]) -> D
         "Receiver": lambda: receiver_from_fields(name, simulation, fields, entry.get("axes")),
         "Speaker": lambda: Speaker(name, simulation),
         "Display": lambda: Display(
-            name, simulation, int(fields.get("width", 64)), int(fields.get("height", 64))
+            name,
+            simulation,
+            device_side(fields.get("width"), 64, f"Display {_shown(name)} width", 0),
+            device_side(fields.get("height"), 64, f"Display {_shown(name)} height", 0),
         ),
         "Pen": lambda: Pen(name, simulation),
         "Lidar": lambda: RayLidar(name, simulation, mount, fields),

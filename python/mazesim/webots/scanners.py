@@ -20,6 +20,8 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from mazesim.errors import _shown
+from mazesim.webots.devices import device_side
 from mazesim.webots.inert import Lidar, RangeFinder
 from mazesim.webots.sensors import DeviceMount
 from mazesim.webots.walls_now import WallsNow
@@ -72,8 +74,13 @@ class RayLidar(Lidar):
         super().__init__(name, simulation)
         self._rays = _Rays(simulation, mount)
         self._height = mount.z
-        self._points = max(0, int(_number(fields, "horizontalResolution", 512)))
-        self._layers = max(0, int(_number(fields, "numberOfLayers", 4)))
+        named = f"Lidar {_shown(name)}"
+        self._points = device_side(
+            _number(fields, "horizontalResolution", 512), 512, f"{named} horizontalResolution", 0
+        )
+        self._layers = device_side(
+            _number(fields, "numberOfLayers", 4), 4, f"{named} numberOfLayers", 0
+        )
         self._fov = _number(fields, "fieldOfView", 1.5708)
         self._vertical_fov = _number(fields, "verticalFieldOfView", 0.2)
         self._min_range = _number(fields, "minRange", 0.01)
@@ -166,8 +173,9 @@ class RayRangeFinder(RangeFinder):
     ) -> None:
         super().__init__(name, simulation)
         self._rays = _Rays(simulation, mount)
-        self._width = max(1, int(_number(fields, "width", 64)))
-        self._height = max(1, int(_number(fields, "height", 64)))
+        named = f"RangeFinder {_shown(name)}"
+        self._width = device_side(_number(fields, "width", 64), 64, f"{named} width")
+        self._height = device_side(_number(fields, "height", 64), 64, f"{named} height")
         self._fov = _number(fields, "fieldOfView", 0.7854)
         self._min_range = _number(fields, "minRange", 0.01)
         self._max_range = _number(fields, "maxRange", 1.0)

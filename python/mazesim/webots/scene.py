@@ -16,6 +16,7 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 
 from mazesim._paths import open_input
+from mazesim.webots.devices import device_side
 from mazesim.webots.frames import (
     WORLD_FRAME,
     camera_heading,
@@ -371,9 +372,9 @@ def _scene(
         bracketed = bool(arguments.tokens) and arguments.tokens[0].kind == "["
         scene.controller_args = strings if bracketed else " ".join(strings[:1]).split()
     if (width := first_value(own, "camera_width", _leading(1))) is not None:
-        scene.camera_width = max(1, int(width[0]))
+        scene.camera_width = device_side(width[0], 1, "the E-puck's camera_width")
     if (height := first_value(own, "camera_height", _leading(1))) is not None:
-        scene.camera_height = max(1, int(height[0]))
+        scene.camera_height = device_side(height[0], 1, "the E-puck's camera_height")
     if (fov := first_value(own, "camera_fieldOfView", _leading(1))) is not None:
         scene.camera_fov = fov[0]
     if (turn := first_value(own, "camera_rotation", _leading(4))) is not None:
