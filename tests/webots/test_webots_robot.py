@@ -40,3 +40,26 @@ def test_a_controller_of_webots_swig_api_may_call_robot_del_before_it_exits() ->
     robot.__del__()
     assert robot.getTime() == pytest.approx(0.064)
     simulations.release()
+
+
+def test_a_robot_whose_construction_raised_is_not_the_process_s_one(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    # A Supervisor() that raised while finding its devices left itself as the process's robot,
+    # so a controller's fallback Robot() took the broken one's devices (AttributeError).
+    from mazesim.webots import robot as robots
+
+    prepare(mazesim.load_world("arena"), seconds=1.0)
+    controller.Robot.created = None
+
+    def broken(simulation: object) -> None:
+        raise RuntimeError("a device could not be made")
+
+    with monkeypatch.context() as patched:
+        patched.setattr(robots, "Equipment", broken)
+        with pytest.raises(RuntimeError):
+            controller.Supervisor()
+    assert controller.Robot.created is None
+    robot = controller.Robot()
+    assert robot.getDevice("ps0") is not None and robot.step(32) != -1
+    simulations.release()

@@ -154,10 +154,11 @@ class Robot(NotSimulated):
             self._equipment = earlier._equipment
             self._custom_data = earlier._custom_data
             return
-        Robot.created = self
         self._simulation = simulation
         self._equipment = Equipment(simulation)
         self._custom_data = simulation.scene.robot_custom_data
+        # Only a whole robot is the process's one: a construction that raised leaves none.
+        Robot.created = self
 
     # --- the robot -------------------------------------------------------------------------
 
