@@ -460,6 +460,29 @@ def test_maze_blocks_stand_in_as_thin_wall_boxes_of_their_length(
     ]
 
 
+def test_a_webots_6_wood_box_stands_in_as_a_box_of_its_box_size(
+    monkeypatch: pytest.MonkeyPatch, tmp_path: Path
+) -> None:
+    # A Webots 6 world's walls of WoodBox: dropped as an unknown PROTO, the e-puck drove
+    # through them. Y-up: boxSize x, y (up), z; centred on its translation; density 100, so a
+    # 10 cm cube of 0.1 kg is a body the robot pushes, the 0.6 m default a static box.
+    monkeypatch.setenv("MAZESIM_OFFLINE", "1")
+    text = (
+        "#VRML_SIM V6.0 utf8\nWorldInfo { }\n"
+        "WoodBox { translation 0 0.05 -0.3 boxSize 1 0.1 0.1 }\n"
+        "WoodBox { translation 0.3 0.05 0 }\n"
+        "WoodBox { translation -0.3 0.05 0 boxSize 0.1 0.1 0.1 }\n"
+        "EPuck { }\n"
+    )
+    _, report = import_wbt_text(text, str(tmp_path / "woodbox.wbt"))
+    assert set(report["protos"]["stand_ins"]) == {"WoodBox"}
+    # The Y-up file's -z is mazesim's x, its -x mazesim's y.
+    boxes = sorted((o["center"], o["size"]) for o in report["obstacles"])
+    assert boxes == [([0.0, -0.3], [0.6, 0.6]), ([0.3, 0.0], [0.1, 1.0])]
+    [body] = report["bodies"]
+    assert body["center"] == [0.0, 0.3] and body["mass"] == pytest.approx(0.1)
+
+
 def test_fridges_tables_and_chairs_stand_in_as_their_documented_body_and_legs(
     monkeypatch: pytest.MonkeyPatch, tmp_path: Path
 ) -> None:

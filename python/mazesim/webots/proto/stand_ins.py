@@ -26,7 +26,10 @@ horizontal axes, under a seat; kept static: at the default density its 40-odd kg
 e-puck's push); "Solids" (``SolidTorus``: majorRadius 2, minorRadius 1, subdivision 24, physics
 NULL, enableBoundingObject TRUE; physically "a set of N spheres, where N is the subdivision
 field", of the minor radius on the circle of the major radius, the ring lying about the up
-axis).
+axis); Webots 6 and 7's ``WoodBox`` (its PROTO of V7.2.5, ``projects/objects/.../WoodBox.proto``
+as published copies of Webots 7 hold it: fields translation ``0 0.3 0``, rotation ``0 1 0 0``,
+``boxSize`` 0.6 x 0.6 x 0.6, ``color`` 1 1 1, ``textureUrl``, ``locked``; a Solid whose
+bounding object is a Box of ``boxSize`` centred on its translation, physics of density 100).
 """
 
 from __future__ import annotations
@@ -247,6 +250,32 @@ PROTO MazeBlock [
   }
 }
 """.replace("BOUNDING_OBJECT", _standing_box("0.015", "%<= l >%", 0.065))
+
+_WOOD_BOX = """#VRML_SIM R2023b utf8
+PROTO WoodBox [
+  field SFVec3f translation 0 0.3 0
+  field SFRotation rotation 0 1 0 0
+  field SFVec3f boxSize 0.6 0.6 0.6
+  field SFColor color 1 1 1
+  field MFString textureUrl "textures/wood_box.png"
+  field SFBool locked FALSE
+]
+{
+  Solid {
+    translation IS translation
+    rotation IS rotation
+    children [
+      Shape {
+        appearance Appearance { material Material { diffuseColor IS color } }
+        geometry Box { size IS boxSize }
+      }
+    ]
+    boundingObject Box { size IS boxSize }
+    physics Physics { density 100 }
+    locked IS locked
+  }
+}
+"""
 
 _FRIDGE = """#VRML_SIM R2023b utf8
 # template language: javascript
@@ -475,6 +504,9 @@ STAND_INS: dict[str, StandIn] = {
     "Can": StandIn(_CAN, "an upright cylinder of the documented size and mass"),
     "MazeBlock": StandIn(
         _MAZE_BLOCK, "a wall block 0.015 m thick and 0.065 m high of the given length"
+    ),
+    "WoodBox": StandIn(
+        _WOOD_BOX, "Webots 6 and 7's wood box: a box of the given boxSize, of density 100"
     ),
     "Fridge": StandIn(_FRIDGE, "a box of the documented 0.7 x 0.7 x 1.8 m"),
     "Table": StandIn(_TABLE, "its top and four legs of the given size, feet and padding"),
