@@ -460,6 +460,23 @@ def test_maze_blocks_stand_in_as_thin_wall_boxes_of_their_length(
     ]
 
 
+def test_a_maze_block_of_a_y_up_world_lies_along_the_file_s_x(
+    monkeypatch: pytest.MonkeyPatch, tmp_path: Path
+) -> None:
+    # The course mazes of R2020a-R2021a (NUE) lie their unrotated blocks along the file's x, as
+    # their own map files show; the stand-in laid them along z, 90 degrees off. The file's x
+    # is mazesim's -y.
+    monkeypatch.setenv("MAZESIM_OFFLINE", "1")
+    text = (
+        '#VRML_SIM R2021a utf8\nWorldInfo { coordinateSystem "NUE" }\n'
+        "MazeBlock { translation 0.1 0 -0.2 length 0.4 }\nE-puck { }\n"
+    )
+    _, report = import_wbt_text(text, str(tmp_path / "maze.wbt"))
+    [block] = report["obstacles"]
+    assert block["center"] == pytest.approx([0.2, -0.1]) and block["yaw"] == 0.0
+    assert block["size"] == pytest.approx([0.015, 0.4])
+
+
 def test_a_webots_6_wood_box_stands_in_as_a_box_of_its_box_size(
     monkeypatch: pytest.MonkeyPatch, tmp_path: Path
 ) -> None:

@@ -645,3 +645,20 @@ def test_webots_8_differential_wheels_drives_alike_in_python_and_c(
     assert float(rows[18][1]) > float(rows[18][2]) > 0, "the left wheel turned faster"
     assert float(rows[24][1]) == pytest.approx(10.0) and float(rows[24][2]) == pytest.approx(-5.0)
     assert in_python.distance_m > 0.05
+
+
+def test_a_failed_assert_does_not_abort_a_controller_as_webots_builds_it(
+    tmp_path: Path, capfd: pytest.CaptureFixture[str]
+) -> None:
+    # Webots' Makefile.include builds a controller with NDEBUG: an assert a course's
+    # controller fails unseen in Webots aborted it here (SIGABRT).
+    source = write_controller(
+        tmp_path,
+        "asserting",
+        '  int cells = 2;\n  assert(cells == 3);\n  printf("after the assert\\n");\n'
+        "  wb_robot_step(32);",
+    )
+    source.write_text("#include <assert.h>\n" + source.read_text())
+    [run], [out] = run_twins(capfd, source, seconds=0.1)
+    assert (run.exit_status, run.error) == (0, "")
+    assert "after the assert" in out

@@ -49,8 +49,11 @@ __all__ = ["CAPI", "Build", "build", "cache_folder", "drive", "native_robot"]
 CAPI = Path(__file__).with_name("capi")
 #: Seconds a build may take.
 BUILD_TIMEOUT_S = 300
-#: The compiler's options (besides include folders and files).
-FLAGS = ("-O2", "-w")
+#: The compiler's options (besides include folders and files): optimised, without warnings, and
+#: without ``assert`` checks, as Webots' ``Makefile.include`` builds a controller by default (its
+#: release goal defines ``NDEBUG``), so that an assertion a controller fails unseen in Webots
+#: (a course's Eigen matrix filled with fewer values than it holds) does not abort it here.
+FLAGS = ("-O2", "-w", "-DNDEBUG")
 #: The C compiler's own: a global that a header defines (``int count;``, not ``extern``) in
 #: every file including it is one common symbol, as GCC made it before version 10 (the
 #: compilers of Webots' Linux and Windows releases of those years), where GCC 10 on refuses

@@ -11,7 +11,9 @@ infra-red sensors read, as a ``PBRAppearance`` of roughness 0.3, metalness 0; th
 ``SoccerBall``'s black and white texture is not drawn: it is white, as any texture) and
 "Obstacles" (``OilBarrel``: height 0.88, radius 0.305, centred on its translation, physics NULL
 by default) and "Drinks" (``Can``: 0.03175 m radius, 0.1222 m high, 0.35 kg); the
-robotbenchmark "Maze Runner" sample's ``MazeBlock`` (its PROTO interface: a wall block 0.015 m
+robotbenchmark "Maze Runner" sample's ``MazeBlock`` (in a Y-up world of R2020a-R2021a its length
+lies along the file's x, as the UNSW MTRN4110 course worlds' own map files give their mazes;
+its PROTO interface: a wall block 0.015 m
 thick, ``length`` long (default 0.1) and 0.065 m high, standing on its translation, of density
 200 kg/m^3); "Kitchen" (``Fridge``: 0.7 x 0.7 x 1.8 m, standing on its translation, centred on
 it across) and "Tables" (``Table``: ``size`` 1 x 1.8 x 0.74 m since R2022a, 1.8 x 0.74 x 1 with
@@ -245,7 +247,14 @@ PROTO MazeBlock [
     translation IS translation
     rotation IS rotation
     name IS name
+    %< if (yUp) { >%
+    boundingObject Pose {
+      translation 0 0.0325 0
+      children [ Box { size %<= l >% 0.065 0.015 } ]
+    }
+    %< } else { >%
     BOUNDING_OBJECT
+    %< } >%
     physics Physics { density 200 }
   }
 }
