@@ -397,7 +397,8 @@ class Simulator:
         """Every robot's pose, an (R, 3) float32 array of x, y, yaw."""
     def robot_state(self, robot_index: int = 0) -> dict[str, Any]:
         """Robot `robot`'s state as a dict: pose, colliding, touching_robot, collisions,
-        distance_travelled, wheel_speeds, encoders, wall_clearance, last_crossing, goal."""
+        distance_travelled, wheel_speeds, encoders, wheel_turns, wall_clearance, last_crossing,
+        goal."""
     def step_observe(
         self,
         left: float,
@@ -533,6 +534,10 @@ class Simulator:
     def wheel_speeds(self) -> tuple[float, float]: ...
     @property
     def encoders(self) -> tuple[float, float]: ...
+    @property
+    def wheel_turns(self) -> tuple[float, float]:
+        """The wheels' rotation (rad) unquantised: ``encoders`` before its rounding to the
+        profile's ``encoder_resolution``."""
     @property
     def wall_clearance(self) -> float:
         """Signed gap between the body and the nearest wall in metres (negative: penetration)."""

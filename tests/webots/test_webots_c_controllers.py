@@ -184,6 +184,15 @@ def test_a_crashing_controller_is_reported_with_its_signal(tmp_path: Path) -> No
     assert run.exit_status == 1
     assert run.error == "the C controller crashed: killed by SIGSEGV\n"
     assert run.steps == 3
+    cpp = write_source(
+        tmp_path,
+        "cpp_crasher",
+        "#include <webots/Robot.hpp>\nint main() {\n  webots::Robot robot;\n  robot.step(32);\n"
+        "  volatile int *nowhere = nullptr;\n  *nowhere = 1;\n}\n",
+        ".cpp",
+    )
+    run = run_controller(cpp, mazesim.load_world("arena"), seconds=2.0)
+    assert run.error == "the C++ controller crashed: killed by SIGSEGV\n", "its own language"
 
 
 def test_a_step_the_api_refuses_ends_the_run_with_its_message(tmp_path: Path) -> None:

@@ -18,6 +18,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from mazesim.webots.devices import discretize
 from swarm_project import run_project
 
 PROJECT = Path(__file__).resolve().parent.parent / "data" / "webots-fidelity-29"
@@ -68,11 +69,12 @@ def test_a_c_controller_s_pid_gains_drive_its_wheel_as_webots_pid(
 ) -> None:
     """``wb_motor_set_control_pid(2, 0.5, 0.01)`` in C: the integral and the derivative terms
     too (the derivative's first kick clamped at maxVelocity); the right wheel keeps P = 10. Both
-    within a tick and a half of the encoders (2 pi / 1000 rad each)."""
+    read as Webots reads them: Webots' angles rounded to the E-puck PROTO's 0.00628 rad."""
     _, logs = run("pid_gains_c", tmp_path, 2.0)
     angles = np.array(logs["pid_gains_c"]["angles"])
-    assert angles[:, 0] == pytest.approx(webots_pid_angles((2.0, 0.5, 0.01), 40), abs=0.0095)
-    assert angles[:, 1] == pytest.approx(webots_pid_angles((10.0, 0.0, 0.0), 40), abs=0.0095)
+    for side, gains in enumerate(((2.0, 0.5, 0.01), (10.0, 0.0, 0.0))):
+        webots = [discretize(a, 0.00628) for a in webots_pid_angles(gains, 40)]
+        assert angles[:, side] == pytest.approx(webots, abs=1e-9)
 
 
 def test_wheels_without_available_torque_do_not_turn(tmp_path: Path) -> None:
@@ -251,22 +253,33 @@ def test_a_sonar_s_noise_column_and_resolution(tmp_path: Path) -> None:
     assert 2.5 < statistics.stdev(values) < 4.5
 
 
-@pytest.mark.parametrize(
-    ("speed", "most_mrad"), [(6.28, 3.2), (3.14, 3.2), (0.5, 6.3), (-1.0, 12.5), (-6.28, 9.5)]
-)
-def test_the_e_puck_s_encoders_stay_within_a_few_mrad_of_webots_rounding(
-    speed: float, most_mrad: float
-) -> None:
-    """The figures of docs/webots.md's "wheel encoders' resolution": the profile's 2 pi / 1000
-    rad rounded to the nearest step against the E-puck PROTO's 0.00628 rounded as Webots
-    rounds (``discretize``), on the exact angles of 60 s of 32 ms steps at ``speed``: a bound
-    that does not grow with the angle, both rounding the whole angle."""
-    from mazesim import RobotProfile
-    from mazesim.webots.devices import discretize
+def test_the_e_puck_s_wheel_sensors_read_the_true_angle_to_the_proto_s_resolution() -> None:
+    """Position control closes on the wheel's true angle (``WbMotor``: the joint's position)
+    and the wheel sensors round it to the E-puck PROTO's ``resolution 0.00628`` as Webots
+    rounds (``WbPositionSensor::position``, ``discretize``: ``int(v / r + 0.5) * r``). A wheel
+    sent to 8.25 rad settles within a micro-radian of it and reads 1314 steps, 8.25192 rad, at
+    least its target (a controller waiting for that, as MTRN4110's phase D does, goes on); one
+    sent to -1 rad reads -158 steps (the cast truncates towards 0), not -159."""
+    import mazesim
+    from mazesim.webots import controller, prepare
+    from mazesim.webots import simulation as simulations
 
-    tick = RobotProfile.builtin("e-puck").encoder_resolution
-    assert tick == pytest.approx(2 * math.pi / 1000, rel=1e-15)
-    angles = speed * 0.032 * np.arange(1, 1876)
-    ours = np.round(angles / tick) * tick
-    webots = np.array([discretize(float(a), 0.00628) for a in angles])
-    assert 1000 * np.abs(ours - webots).max() <= most_mrad
+    prepare(mazesim.load_world("arena"), seconds=5.0, noise=False)
+    try:
+        controller.Robot.created = None
+        robot = controller.Robot()
+        motors = [robot.getDevice(f"{side} wheel motor") for side in ("left", "right")]
+        sensors = [robot.getDevice(f"{side} wheel sensor") for side in ("left", "right")]
+        for motor, target, sensor in zip(motors, (8.25, -1.0), sensors):
+            motor.setPosition(target)
+            sensor.enable(32)
+        for _ in range(125):
+            robot.step(32)
+        true = simulations.current().wheel_angles()
+        assert true == pytest.approx((8.25, -1.0), abs=1e-6)
+        readings = [sensor.getValue() for sensor in sensors]
+        assert readings == [1314 * 0.00628, -158 * 0.00628]
+        assert readings[0] >= 8.25
+    finally:
+        controller.Robot.created = None
+        simulations.release()

@@ -23,8 +23,14 @@ def test_an_expanded_e_puck_drives_by_the_wheel_names_its_world_gives(
     run = run_world(str(WORLD / "renamed_wheels.wbt"), seconds=2.0)
     (robot,) = run.robots
     assert robot.exit_status == 0, robot.error
-    # 30 steps of 32 ms at 2 rad/s: the left wheel's encoder reads its 1.92 rad.
-    assert "left wheel turned 1.92 rad" in capfd.readouterr().out
+    # 30 steps of 32 ms at 2 rad/s: the left wheel's encoder reads its 1.92 rad, unrounded (its
+    # node writes no resolution: Webots' -1, not the E-puck PROTO's 0.00628, which would read
+    # 1.92168); the right one's 3.84 rad to its node's resolution 0.5, int(7.68 + 0.5) steps.
+    out = capfd.readouterr().out
+    assert "left wheel turned 1.92 rad" in out
+    (line,) = [line for line in out.splitlines() if line.startswith("encoders read")]
+    left, right = (float(word) for word in line.split()[2:])
+    assert left == pytest.approx(1.92, abs=1e-9) and right == 4.0
     assert robot.final_pose[0] > -0.5 + 0.03, "it drives ahead, not standing still"
     turned = math.remainder(robot.final_pose[2], 2 * math.pi)
     assert turned > 0.5, "the right wheel, faster, turns it left: each name drives its own wheel"

@@ -161,6 +161,32 @@ def test_a_cpp_controller_in_a_cc_file_is_found_in_its_webots_folder(tmp_path: P
     assert controller_file(folder) == str(folder / "bidder.cc")
 
 
+def test_a_controller_its_makefile_builds_from_other_sources_is_found(tmp_path: Path) -> None:
+    """Webots' Makefile.include names the program after the folder whatever its sources are
+    called: a folder holding ``main.cpp`` and a class its ``CXX_SOURCES`` lists (MTRN4110's
+    explorers) runs the source defining ``main``; a Makefile listing none builds the folder's
+    own sources; a folder whose sources define no ``main``, or without a Makefile, has none."""
+    from mazesim.webots.runner import controller_file
+
+    (tmp_path / "worlds").mkdir()
+    world = str(tmp_path / "worlds" / "w.wbt")
+    folder = tmp_path / "controllers" / "explorer"
+    folder.mkdir(parents=True)
+    (folder / "Moves.cpp").write_text("int forward() { return 1; }\n")
+    (folder / "main.cpp").write_text("int forward();\nint main(int argc, char **argv) {}\n")
+    robot = {"name": "e", "controller": "explorer"}
+    none, why = controller_of(robot, world, {})
+    assert none is None and "explorer.py, .c" in why, "no Makefile: nothing Webots builds"
+    (folder / "Makefile").write_text("CXX_SOURCES = Moves.cpp \\\n  main.cpp\ninclude x\n")
+    assert controller_of(robot, world, {}) == (str(folder / "main.cpp"), "")
+    assert controller_file(folder) == str(folder / "main.cpp")
+    (folder / "Makefile").write_text("include $(WEBOTS_HOME)/resources/Makefile.include\n")
+    assert controller_file(folder) == str(folder / "main.cpp"), "the folder's own sources"
+    (folder / "main.cpp").write_text("int forward();\nint remain(int n) { return n; }\n")
+    none, why = controller_of(robot, world, {})
+    assert none is None and "explorer.py, .c" in why
+
+
 @pytest.mark.skipif(shutil.which("gcc") is None, reason="needs gcc")
 def test_c_controllers_drive_every_robot_of_a_world_of_several(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch

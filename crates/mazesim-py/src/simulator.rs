@@ -264,7 +264,8 @@ impl PySimulator {
     }
 
     /// Robot `robot`'s state as a dict: pose, colliding, touching_robot, collisions,
-    /// distance_travelled, wheel_speeds, encoders, wall_clearance, last_crossing, goal.
+    /// distance_travelled, wheel_speeds, encoders, wheel_turns, wall_clearance, last_crossing,
+    /// goal.
     #[pyo3(signature = (robot_index = IntArg::ZERO), text_signature = "($self, robot_index=0)")]
     fn robot_state<'py>(
         &self,
@@ -282,6 +283,8 @@ impl PySimulator {
             d.set_item("wheel_speeds", (w[0] as f64, w[1] as f64))?;
             let e = s.encoders();
             d.set_item("encoders", (e[0], e[1]))?;
+            let t = s.wheel_turns();
+            d.set_item("wheel_turns", (t[0], t[1]))?;
             d.set_item("wall_clearance", s.wall_clearance() as f64)?;
             d.set_item("last_crossing", s.last_crossing())?;
             d.set_item("goal", s.goal().map(goal_tuple))?;
@@ -617,6 +620,13 @@ impl PySimulator {
     #[getter]
     fn encoders(&self) -> PyResult<(f64, f64)> {
         let e = self.read(|s| s.encoders())?;
+        Ok((e[0], e[1]))
+    }
+    /// The wheels' rotation (rad) unquantised: `encoders` before its rounding to the profile's
+    /// `encoder_resolution`.
+    #[getter]
+    fn wheel_turns(&self) -> PyResult<(f64, f64)> {
+        let e = self.read(|s| s.wheel_turns())?;
         Ok((e[0], e[1]))
     }
     #[getter]

@@ -26,7 +26,15 @@ import shlex
 from dataclasses import dataclass, field
 from pathlib import Path
 
-__all__ = ["LIBRARY_PACKAGES", "MAKEFILES", "MakefileSettings", "makefile", "read_makefile"]
+__all__ = [
+    "LIBRARY_PACKAGES",
+    "MAKEFILES",
+    "MakefileSettings",
+    "defines_main",
+    "makefile",
+    "makefile_main",
+    "read_makefile",
+]
 
 #: The names of a controller's Makefile, as make looks for them.
 MAKEFILES = ("GNUmakefile", "makefile", "Makefile")
@@ -58,6 +66,8 @@ LIBRARY_PACKAGES = {
 }
 #: Compiler options mazesim's build sets itself (optimisation, warnings, debugging).
 _OWN_OPTIONS = re.compile(r"^-(?:O\w*|W.*|w|g\w*|pipe)$")
+#: A C or C++ program's ``main`` function, defined at the start of a line.
+_MAIN = re.compile(r"^[ \t]*(?:int|void)[ \t]+main[ \t]*\(", re.MULTILINE)
 _ASSIGNMENT = re.compile(r"^(?:override\s+|export\s+)?([A-Za-z_]\w*)\s*(::=|:=|\+=|\?=|=)\s*(.*)$")
 #: A folder of a Webots installation (``/usr/local/webots/include/controller/c``).
 _WEBOTS_FOLDER = re.compile(r"\$\(WEBOTS_HOME\)|(?:^|/)(?:include|lib)/controller(?:/|$)")
@@ -102,6 +112,37 @@ class MakefileSettings:
 def makefile(folder: Path) -> Path | None:
     """The controller folder's Makefile, the first name make looks for, or None."""
     return next((folder / name for name in MAKEFILES if (folder / name).is_file()), None)
+
+
+def makefile_main(folder: Path) -> Path | None:
+    """The source that stands for the program a controller folder's Makefile builds, when the
+    folder has a Makefile but no source named after it (``main.cpp`` and the classes its
+    ``CXX_SOURCES`` lists): Webots' ``Makefile.include`` names the program after the folder
+    whatever its sources are called, and Webots runs that program. The listed sources (the
+    folder's own C and C++ sources when none is listed) are searched for the one defining
+    ``main``; None without a Makefile or such a source."""
+    found = makefile(folder)
+    if found is None:
+        return None
+    try:
+        text = found.read_text(encoding="utf-8", errors="replace")
+    except OSError:
+        return None
+    sources = read_makefile(folder, text).sources
+    if sources is None:
+        own = (p for p in folder.iterdir() if p.suffix in _SOURCE_SUFFIXES and p.is_file())
+        sources = sorted(own)
+    return next((source for source in sources if defines_main(source)), None)
+
+
+def defines_main(path: Path) -> bool:
+    """Whether the source file ``path`` defines a ``main`` function (False when it cannot be
+    read)."""
+    try:
+        text = path.read_text(encoding="utf-8", errors="replace")
+    except OSError:
+        return False
+    return _MAIN.search(text) is not None
 
 
 def _logical_lines(text: str) -> list[str]:

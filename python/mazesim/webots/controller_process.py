@@ -14,7 +14,7 @@ messages are pickled tuples). The protocol, from the controller's side:
 - ``("step", left, right)``: this robot's wheel speeds (rad/s) for the next basic step; answered
   ``("ok", (False, state))`` once every robot whose controller still runs has asked for the step
   and the world has taken it (lockstep), ``state`` being the robot's ``pose``, ``time`` and
-  ``encoders`` after the step (:data:`STATE_AFTER_STEP`, which the controller's process then
+  ``wheel_turns`` after the step (:data:`STATE_AFTER_STEP`, which the controller's process then
   reads without asking, until it moves its robot itself), the world's ``last_reset``
   (:class:`~mazesim.webots.simulation.WorldReset`) and the ``customData`` a supervisor last
   wrote into the robot's node (``Fleet.custom_data``) and how many times a supervisor has
@@ -148,7 +148,7 @@ METHOD = _Method()
 
 #: What the answer to a step carries of the robot's state after it: what a controller reads of
 #: its robot at every step, which changes only when the world steps or the robot is moved.
-STATE_AFTER_STEP = ("pose", "time", "encoders")
+STATE_AFTER_STEP = ("pose", "time", "wheel_turns")
 
 
 def state_after_step(simulator: Any) -> dict[str, Any]:
@@ -159,7 +159,7 @@ def state_after_step(simulator: Any) -> dict[str, Any]:
 class RemoteSimulator(Remote):
     """The robot's simulator in the world's process; ``step`` waits for the lockstep.
 
-    Its ``pose``, ``time`` and ``encoders`` after a step come with the step's answer; until the
+    Its ``pose``, ``time`` and ``wheel_turns`` after a step come with the step's answer; until the
     next step they are read from it (a pose this process sets is asked for again). A robot that
     another robot's supervisor puts elsewhere during a step reads its new pose after the next
     step, as a Webots robot's sensors do.
@@ -193,11 +193,11 @@ class RemoteSimulator(Remote):
     def hold_wheel_commands(self, commands: tuple[WheelCommand, ...]) -> None:
         """Notes the wheel motors' commands as the next step sends them, which the world's
         process holds for the robot (:func:`held_commands`); each wheel's angle goes as its
-        difference to the wheel's encoder, which changes only when the world is reset."""
-        encoders = self.encoders
+        difference to the wheel's turns, which changes only when the world is reset."""
+        turns = self.wheel_turns
         self._commands = tuple(
             (c.target_position, c.velocity, c.max_velocity, c.angle - float(turned))
-            for c, turned in zip(commands, encoders)
+            for c, turned in zip(commands, turns)
         )
 
     def _state(self, name: str) -> Any:
@@ -216,9 +216,9 @@ class RemoteSimulator(Remote):
         return self._state("time")
 
     @property
-    def encoders(self) -> Any:
-        """The wheels' turns (rad)."""
-        return self._state("encoders")
+    def wheel_turns(self) -> Any:
+        """The wheels' turns (rad), unrounded."""
+        return self._state("wheel_turns")
 
     def set_pose_pushed_out(self, x: float, y: float, yaw: float) -> tuple[float, float]:
         """Puts the robot at a new pose at rest, or at the nearest clear of the walls; returns
@@ -242,13 +242,13 @@ class RemoteSimulator(Remote):
         return bool(over)
 
 
-def held_commands(sent: Sequence[Sequence[float]], encoders: Sequence[float]) -> list[WheelCommand]:
+def held_commands(sent: Sequence[Sequence[float]], turns: Sequence[float]) -> list[WheelCommand]:
     """The wheel motors' commands as a robot's last step sent them
-    (:meth:`RemoteSimulator.hold_wheel_commands`), each wheel's angle where its encoder
-    ``encoders`` (rad) now puts it."""
+    (:meth:`RemoteSimulator.hold_wheel_commands`), each wheel's angle where its ``turns``
+    (rad) now put it."""
     return [
         WheelCommand(target, velocity, max_velocity, offset + float(turned))
-        for (target, velocity, max_velocity, offset), turned in zip(sent, encoders)
+        for (target, velocity, max_velocity, offset), turned in zip(sent, turns)
     ]
 
 

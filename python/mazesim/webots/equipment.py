@@ -124,6 +124,9 @@ _TILTED_KINDS = _DEVICE_FRAME_KINDS | {"InertialUnit"}
 #: The E-puck PROTO's names of its wheels' motors and position sensors, left first.
 _WHEEL_MOTORS = ("left wheel motor", "right wheel motor")
 _WHEEL_SENSORS = ("left wheel sensor", "right wheel sensor")
+#: The ``resolution`` of the E-puck PROTO's wheel PositionSensors (rad; "(2 * pi) / 1000" in the
+#: PROTO's comment, written 0.00628), to which Webots rounds their readings.
+EPUCK_WHEEL_SENSOR_RESOLUTION = 0.00628
 
 
 def _own(entries: Sequence[Mapping[str, Any]], kind: str) -> list[Mapping[str, Any]]:
@@ -167,6 +170,20 @@ def _wheel_names(
         names[side] = name
         free.remove(side)
     return names, own
+
+
+def _wheel_sensor_resolution(name: str, renamed: Sequence[Mapping[str, Any]]) -> float:
+    """The ``resolution`` of the wheel sensor ``name``: that of the world's own PositionSensor
+    node of that name (a robot saved expanded; -1, Webots' default, when it writes none), else
+    the E-puck PROTO's."""
+    for entry in renamed:
+        if str(entry.get("name")) == name:
+            fields = entry.get("fields")
+            value = fields.get("resolution") if isinstance(fields, Mapping) else None
+            if isinstance(value, (int, float)) and not isinstance(value, bool):
+                return float(value)
+            return -1.0
+    return EPUCK_WHEEL_SENSOR_RESOLUTION
 
 
 def _names_a_side(name: str) -> bool:
@@ -330,6 +347,8 @@ class Equipment:
         encoders = [
             PositionSensor(name, simulation, side) for side, name in enumerate(sensor_names)
         ]
+        for encoder in encoders:
+            encoder._resolution = _wheel_sensor_resolution(encoder.getName(), renamed_sensors)
         self._motors = [
             Motor(name, simulation, side, encoders[side]) for side, name in enumerate(motor_names)
         ]

@@ -74,7 +74,12 @@ from mazesim.webots.proto_fields import declared_fields, robot_label
 from mazesim.webots.radio import Radio
 from mazesim.webots.requirements import PreparedController, prepare_controller, unbuilt
 from mazesim.webots.robots_changed import RemovedRobot, RobotChange, robot_change
-from mazesim.webots.runner import CONTROLLER_SUFFIXES, EXIT_INTERRUPTED, OTHER_LANGUAGES
+from mazesim.webots.runner import (
+    CONTROLLER_SUFFIXES,
+    EXIT_INTERRUPTED,
+    OTHER_LANGUAGES,
+    folder_controller,
+)
 from mazesim.webots.scene import Scene, read_scene, read_scenes, read_world_text
 from mazesim.webots.shared_world import (
     RobotView,
@@ -491,7 +496,7 @@ class Fleet:
         self.radio.clear()
         count, now = self._resets[0].count + 1, float(here[0].time)
         for robot, simulator in enumerate(self._simulators):
-            left, right = (float(v) for v in simulator.encoders)
+            left, right = (float(v) for v in simulator.wheel_turns)
             self._resets[robot] = WorldReset(count, now, (left, right))
 
     def last_reset(self, index: int) -> WorldReset:
@@ -646,10 +651,9 @@ def controller_of(
         )
     folder = os.path.dirname(os.path.abspath(world_path))
     for project in (os.path.dirname(folder), folder):
-        for suffix in CONTROLLER_SUFFIXES:  # as Webots looks for them
-            candidate = os.path.join(project, "controllers", name, f"{name}{suffix}")
-            if os.path.isfile(candidate):
-                return candidate, "" if project != folder else _BESIDE_THE_WORLD.format(name)
+        candidate = folder_controller(os.path.join(project, "controllers", name))
+        if candidate is not None:
+            return candidate, "" if project != folder else _BESIDE_THE_WORLD.format(name)
     stock = stock_controller(name)
     if stock is not None:  # Webots' own, which it finds among its projects
         return stock, ""
@@ -1286,7 +1290,7 @@ class _Pipes:
             self._ended(index)
             if sent is not None and self.movable[index] and index not in self.fleet.gone:
                 # Killed or crashed without a word: its motors keep what its last step sent.
-                self.coasting.start(index, held_commands(sent, self.simulators[index].encoders))
+                self.coasting.start(index, held_commands(sent, self.simulators[index].wheel_turns))
             if not run.error:
                 run.exit_status = run.exit_status or 1
                 run.error = "the controller's process ended without a report\n"

@@ -37,6 +37,7 @@ from mazesim.webots.cmake_build import cmake_build, cmake_program
 from mazesim.webots.controller_makefile import (
     LIBRARY_PACKAGES,
     MakefileSettings,
+    defines_main,
     makefile,
     read_makefile,
 )
@@ -112,8 +113,6 @@ _REDEFINED_POSIX_NAME = re.compile(
 #: The C steps' flag that builds them as X/Open C, without glibc's default BSD and POSIX
 #: extensions (M_PI stays declared).
 _POSIX_FREE = ("c", ("-D_XOPEN_SOURCE",))
-#: The definition of a program's ``main`` function, at the start of a line.
-_MAIN = re.compile(r"^[ \t]*(?:int|void)[ \t]+main[ \t]*\(", re.MULTILINE)
 #: Most files read for their includes before a build.
 MAX_SCANNED = 500
 
@@ -156,6 +155,12 @@ COMPILERS = {"c": ("CC", "gcc"), "cpp": ("CXX", "g++")}
 LANGUAGE_NAMES = {"c": "C", "cpp": "C++"}
 
 
+def language_name(source: str | os.PathLike[str]) -> str:
+    """The language of the controller source ``source`` by its suffix: "C++" or "C"."""
+    suffix = os.path.splitext(os.fspath(source))[1].lower()
+    return LANGUAGE_NAMES["cpp" if suffix in CPP_SUFFIXES else "c"]
+
+
 def _compiler(language: str) -> str:
     variable, default = COMPILERS[language]
     name = os.environ.get(variable) or default
@@ -172,11 +177,6 @@ def _compiler(language: str) -> str:
 def _files(folder: Path, suffixes: tuple[str, ...], recursive: bool = False) -> list[Path]:
     found = folder.rglob("*") if recursive else folder.glob("*")
     return sorted(p for p in found if p.suffix.lower() in suffixes and p.is_file())
-
-
-def _defines_main(path: Path) -> bool:
-    """Whether a source file defines a ``main`` function."""
-    return _MAIN.search(path.read_text(encoding="utf-8", errors="replace")) is not None
 
 
 def _key(compilers: list[str], files: list[Path], options: tuple[str, ...] = ()) -> str:
@@ -467,8 +467,8 @@ def _build_sources(main: Path, settings: MakefileSettings) -> Build:
     # Another file with a main of its own is another program (a tool, a test): left out. But
     # when the file named after the folder defines no main, the program's main is in another
     # of its files (Webots' Makefile links them all into the folder's one program): kept.
-    apart = [p for p in [*c_sources, *cpp_sources] if p != main and _defines_main(p)]
-    if not _defines_main(main):
+    apart = [p for p in [*c_sources, *cpp_sources] if p != main and defines_main(p)]
+    if not defines_main(main):
         apart = []
     c_sources = [p for p in c_sources if p not in apart]
     cpp_sources = [p for p in cpp_sources if p not in apart]
@@ -650,7 +650,12 @@ def _signal_name(status: int) -> str:
 
 
 def drive(
-    program: str, robot: Any, arguments: list[str], facts: tuple[str, str, str], folder: str
+    program: str,
+    robot: Any,
+    arguments: list[str],
+    facts: tuple[str, str, str],
+    folder: str,
+    language: str = "C",
 ) -> tuple[int, str, bool]:
     """Runs a built controller as a child process and serves its steps until it exits.
 
@@ -661,6 +666,7 @@ def drive(
         facts: Controller name, project path and world path, for the API's getters.
         folder: The controller's folder, where it runs (as in Webots), and where its
             ``argv[0]`` says it is.
+        language: The controller's language as a crash names it ("C" or "C++").
 
     Returns:
         The exit status, the error (a crash, or "" ), and whether the controller was stopped
@@ -714,7 +720,7 @@ def drive(
         return 0, "", True
     if status < 0:
         name = _signal_name(status)
-        return EXIT_CRASHED, f"the C controller crashed: killed by {name}\n", False
+        return EXIT_CRASHED, f"the {language} controller crashed: killed by {name}\n", False
     return status, "", False
 
 

@@ -43,6 +43,7 @@ class RemovedRobot:
         self.pose = tuple(float(v) for v in simulator.pose)
         self.time = float(simulator.time)
         self.encoders = tuple(float(v) for v in simulator.encoders)
+        self.wheel_turns = tuple(float(v) for v in simulator.wheel_turns)
         self.distance_travelled = float(simulator.distance_travelled)
         self.collisions = int(simulator.collisions)
         self.control_step_ms = float(simulator.control_step_ms)

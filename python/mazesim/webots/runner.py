@@ -17,6 +17,7 @@ import tokenize
 import traceback
 from collections.abc import Mapping
 from dataclasses import dataclass, field
+from pathlib import Path
 from types import ModuleType, TracebackType
 from typing import Any
 
@@ -27,6 +28,7 @@ from mazesim.errors import InvalidArgumentError, MazesimError, MazesimIOError, _
 from mazesim.webots import controller as controller_module
 from mazesim.webots import native_controller, termination
 from mazesim.webots import simulation as simulations
+from mazesim.webots.controller_makefile import makefile_main
 from mazesim.webots.keyboard import KeyScript
 from mazesim.webots.last_commands import WheelCommand
 from mazesim.webots.requirements import (
@@ -136,6 +138,21 @@ NOT_CONTROLLERS = {
 }
 
 
+def folder_controller(folder: str) -> str | None:
+    """The controller file of the Webots controller folder ``folder`` (``controllers/NAME``), as
+    Webots finds its program: ``NAME.py``, ``NAME.c``, ``NAME.cpp``, ``NAME.cc`` or ``NAME.cxx``
+    (:data:`CONTROLLER_SUFFIXES`), else the source defining ``main`` among those its Makefile
+    builds into the program ``NAME`` (:func:`~mazesim.webots.controller_makefile.makefile_main`:
+    a ``main.cpp`` its ``CXX_SOURCES`` lists); None when there is neither."""
+    name = os.path.basename(os.path.normpath(folder))
+    for suffix in CONTROLLER_SUFFIXES:
+        inside = os.path.join(folder, f"{name}{suffix}")
+        if os.path.isfile(inside):
+            return inside
+    main = makefile_main(Path(folder)) if os.path.isdir(folder) else None
+    return None if main is None else str(main)
+
+
 def controller_file(path: str | os.PathLike[str]) -> str:
     """The controller file to run: ``path`` itself, or for a Webots controller folder
     ``controllers/NAME`` the ``NAME.py``, ``NAME.c``, ``NAME.cpp``, ``NAME.cc`` or ``NAME.cxx`` in
@@ -162,11 +179,10 @@ def controller_file(path: str | os.PathLike[str]) -> str:
                 f"does not run"
             )
         return file
+    inside = folder_controller(file)
+    if inside is not None:
+        return inside
     name = os.path.basename(file)
-    for suffix in CONTROLLER_SUFFIXES:
-        inside = os.path.join(file, f"{name}{suffix}")
-        if os.path.isfile(inside):
-            return inside
     others = [
         f"{name}{suffix} ({language})"
         for suffix, language in OTHER_LANGUAGES.items()
@@ -361,7 +377,12 @@ def _run_native(
             project = os.path.join(os.path.dirname(os.path.dirname(folder)), "")
             arguments = list(scene.controller_args) if scene else []
             status, error, _ = native_controller.drive(
-                prepared.program, robot, arguments, (name, project, world_path), folder
+                prepared.program,
+                robot,
+                arguments,
+                (name, project, world_path),
+                folder,
+                native_controller.language_name(prepared.file),
             )
     except KeyboardInterrupt:
         status = EXIT_INTERRUPTED

@@ -86,8 +86,14 @@ class RobotView:
 
     @property
     def encoders(self) -> tuple[float, float]:
-        """The wheels' turns (rad)."""
+        """The wheels' turns (rad) to the profile's encoder resolution."""
         left, right = self._state("encoders")
+        return float(left), float(right)
+
+    @property
+    def wheel_turns(self) -> tuple[float, float]:
+        """The wheels' turns (rad) unrounded."""
+        left, right = self._state("wheel_turns")
         return float(left), float(right)
 
     def other_robots(self) -> list[tuple[float, float, float]]:

@@ -373,7 +373,7 @@ class RobotSimulation:
             self.solids.forget_moves()
         if self.scene_edits is not None:  # Webots' reset takes a supervisor's imports out
             self.scene_edits.take_out_imports()
-        left, right = (float(v) for v in self.simulator.encoders)
+        left, right = (float(v) for v in self.simulator.wheel_turns)
         self.last_reset = WorldReset(self.last_reset.count + 1, self.time, (left, right))
 
     def _at_rest(self, x: float, y: float, yaw: float) -> None:
@@ -442,20 +442,13 @@ class RobotSimulation:
         return self._lights_set[1]
 
     def wheel_angles(self) -> tuple[float, float]:
-        """The left and right wheel joints' positions (rad), as Webots' wheel sensors read them:
-        where the world file left them (:attr:`Scene.wheel_positions`, 0 in a fresh world) plus
-        the turns since the start or the world's last reset, to the encoders' resolution (an
-        angle too far out for a whole number of steps, a saved 1e308, as it is)."""
-        resolution = float(self.simulator.robot.encoder_resolution)
-        angles = []
-        turns = zip(self.scene.wheel_positions, self.simulator.encoders, self.last_reset.turns)
-        for start, turned, before in turns:
-            angle = start + (float(turned) - before)
-            steps = angle / resolution if resolution > 0.0 else math.nan
-            if start and math.isfinite(steps):
-                angle = round(steps) * resolution
-            angles.append(angle)
-        return angles[0], angles[1]
+        """The left and right wheel joints' positions (rad) as they are, unrounded (what
+        Webots' motors control and its position sensors round to their ``resolution``): where
+        the world file left them (:attr:`Scene.wheel_positions`, 0 in a fresh world) plus the
+        turns since the start or the world's last reset."""
+        turns = zip(self.scene.wheel_positions, self.simulator.wheel_turns, self.last_reset.turns)
+        left, right = (start + (float(turned) - before) for start, turned, before in turns)
+        return left, right
 
     def distance_readings(self) -> npt.NDArray[np.float32]:
         """The proximity readings ps0..ps7 after the last step."""

@@ -749,6 +749,13 @@ impl Simulator {
         self.wheel_speeds
     }
 
+    /// The wheels' rotation (radians) as it is, unquantised: what `encoders` reads before its
+    /// rounding to the profile's resolution (motor gains included, slip not taken off), for
+    /// callers that round it to a resolution of their own (a Webots PositionSensor's).
+    pub fn wheel_turns(&self) -> [f64; 2] {
+        self.wheel_angles
+    }
+
     /// Wheel position sensors (radians): the wheels' true rotation (motor gains included, slip
     /// not taken off), quantised to the profile's encoder resolution.
     pub fn encoders(&self) -> [f64; 2] {

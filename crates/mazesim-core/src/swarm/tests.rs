@@ -634,6 +634,30 @@ fn encoders_count_the_turn_since_a_reset_to_the_tick() {
 }
 
 #[test]
+fn wheel_turns_are_the_encoders_before_their_rounding() {
+    let profile = RobotProfile::builtin("e-puck").unwrap();
+    let tick = profile.encoder_resolution;
+    let config = SimConfig {
+        noise: false,
+        ..SimConfig::default()
+    };
+    let mut swarm = Swarm::new(gate_world(0.5, false), Arc::new(profile), config).unwrap();
+    swarm.step(&[[1.0, -0.5]]).unwrap();
+    let robot = &swarm.robots()[0];
+    let (turns, encoders) = (robot.wheel_turns(), robot.encoders());
+    for (turn, speed) in turns.iter().zip([1.0_f64, -0.5]) {
+        assert!((turn - speed * 0.032).abs() < 1e-6, "{turn}");
+    }
+    for (turn, reading) in turns.iter().zip(encoders) {
+        assert_eq!(reading, (turn / tick).round() * tick);
+        assert!(
+            (turn - reading).abs() > 1e-6,
+            "0.032 rad is no whole number of ticks"
+        );
+    }
+}
+
+#[test]
 fn a_reset_puts_moved_walls_back_too() {
     let made = quiet(gate_world(0.5, false));
     let mut swarm = quiet(gate_world(0.5, false));
