@@ -687,3 +687,23 @@ def test_a_controller_beside_the_world_file_runs_with_a_warning_that_webots_woul
     inside = tmp_path / "worlds" / "w.wbt"
     inside.write_text(world.read_text())
     assert controller_of({"name": "e-puck", "controller": "still"}, str(inside), {}) == (found, "")
+
+
+def test_a_makefile_folder_with_a_fifo_or_a_folder_for_a_source_has_no_controller(
+    tmp_path: Path,
+) -> None:
+    """A source the Makefile lists that is a FIFO (read, it would wait for a writer for ever)
+    or a folder, and a FIFO for a Makefile, are no program's source."""
+    (tmp_path / "worlds").mkdir()
+    world = str(tmp_path / "worlds" / "w.wbt")
+    folder = tmp_path / "controllers" / "explorer"
+    folder.mkdir(parents=True)
+    os.mkfifo(folder / "main.cpp")
+    (folder / "other.cpp").mkdir()
+    (folder / "Makefile").write_text("CXX_SOURCES = main.cpp other.cpp\n")
+    none, why = controller_of({"name": "e", "controller": "explorer"}, world, {})
+    assert none is None and "explorer.py, .c" in why
+    (folder / "Makefile").unlink()
+    os.mkfifo(folder / "Makefile")
+    none, _ = controller_of({"name": "e", "controller": "explorer"}, world, {})
+    assert none is None

@@ -23,8 +23,11 @@ import glob
 import os
 import re
 import shlex
+import stat
 from dataclasses import dataclass, field
 from pathlib import Path
+
+from mazesim._paths import MAX_TEXT_CHARACTERS
 
 __all__ = [
     "LIBRARY_PACKAGES",
@@ -122,11 +125,8 @@ def makefile_main(folder: Path) -> Path | None:
     folder's own C and C++ sources when none is listed) are searched for the one defining
     ``main``; None without a Makefile or such a source."""
     found = makefile(folder)
-    if found is None:
-        return None
-    try:
-        text = found.read_text(encoding="utf-8", errors="replace")
-    except OSError:
+    text = None if found is None else _text(found)
+    if text is None:
         return None
     sources = read_makefile(folder, text).sources
     if sources is None:
@@ -137,12 +137,23 @@ def makefile_main(folder: Path) -> Path | None:
 
 def defines_main(path: Path) -> bool:
     """Whether the source file ``path`` defines a ``main`` function (False when it cannot be
-    read)."""
+    read or is longer than a source :func:`_text` reads)."""
+    text = _text(path)
+    return text is not None and _MAIN.search(text) is not None
+
+
+def _text(path: Path) -> str | None:
+    """The text of the regular file ``path`` of at most
+    :data:`~mazesim._paths.MAX_TEXT_CHARACTERS` bytes, or None (another kind of file, a longer
+    one, or one that cannot be read)."""
     try:
-        text = path.read_text(encoding="utf-8", errors="replace")
+        if not stat.S_ISREG(os.stat(path).st_mode):  # a FIFO would wait for a writer
+            return None
+        with open(path, "rb") as handle:
+            data = handle.read(MAX_TEXT_CHARACTERS + 1)
     except OSError:
-        return False
-    return _MAIN.search(text) is not None
+        return None
+    return None if len(data) > MAX_TEXT_CHARACTERS else data.decode("utf-8", errors="replace")
 
 
 def _logical_lines(text: str) -> list[str]:
