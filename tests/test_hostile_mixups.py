@@ -102,7 +102,7 @@ def test_a_world_file_given_as_a_controller_is_not_run_as_python(
 ) -> None:
     assert main(["webots", "run", str(WORLD), "--seconds", "1"]) == 2
     said = capsys.readouterr().err
-    assert "expected a Python, C or C++ controller" in said
+    assert "expected a Python, C, C++ or BotStudio controller" in said
     assert "found a TOML file (a mazesim world, given as --world" in said
     assert "NameError" not in said
 

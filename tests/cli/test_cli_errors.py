@@ -441,7 +441,6 @@ def test_sweep_without_ray_names_the_sequential_run(tmp_path: Path) -> None:
         ("Avoid.java", "Java"),
         ("avoid.jar", "Java"),
         ("avoid.m", "MATLAB"),
-        ("blink.bsg", "BotStudio"),
     ],
 )
 def test_webots_run_refuses_a_controller_in_another_language(
@@ -450,8 +449,9 @@ def test_webots_run_refuses_a_controller_in_another_language(
     (tmp_path / file).write_text("public class Avoid {}\n", encoding="utf-8")
     line = _one_error_line(mazesim_command("webots", "run", file, "--seconds", "1", cwd=tmp_path))
     assert line == (
-        f"mazesim: error: {tmp_path / file}: expected a Python, C or C++ controller (.py, .c, "
-        f".cpp, .cc, .cxx), found a {language} controller, which mazesim does not run"
+        f"mazesim: error: {tmp_path / file}: expected a Python, C, C++ or BotStudio controller "
+        f"(.py, .c, .cpp, .cc, .cxx, .bsg), found a {language} controller, which mazesim does not "
+        "run"
     )
 
 

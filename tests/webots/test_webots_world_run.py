@@ -101,10 +101,11 @@ def test_a_controller_field_with_a_typo_is_told_the_project_controller_meant(
     none, why = controller_of({"name": "e-puck", "controller": "wandr"}, str(world), {})
     assert none is None
     assert why == (
-        "no controller controllers/wandr/wandr.py, .c, .cpp, .cc, .cxx (did you mean 'wander'?)"
+        "no controller controllers/wandr/wandr.py, .c, .cpp, .cc, .cxx, .bsg "
+        "(did you mean 'wander'?)"
     )
     _, far = controller_of({"name": "e-puck", "controller": "gripper"}, str(world), {})
-    assert far == "no controller controllers/gripper/gripper.py, .c, .cpp, .cc, .cxx"
+    assert far == "no controller controllers/gripper/gripper.py, .c, .cpp, .cc, .cxx, .bsg"
 
 
 def test_a_robot_whose_controller_is_java_or_matlab_says_so(tmp_path: Path) -> None:
@@ -122,12 +123,14 @@ def test_a_robot_whose_controller_is_java_or_matlab_says_so(tmp_path: Path) -> N
     assert why == "a MATLAB controller controllers/matlab/matlab.m, which mazesim does not run"
     none, why = controller_of({"name": "robot1", "controller": "Slave"}, str(world), {})
     assert none is None and why.startswith("a Java controller controllers/Slave/Slave.java")
-    none, why = controller_of({"name": "e-puck", "controller": "blink"}, str(world), {})
-    assert none is None and why.startswith("a BotStudio controller controllers/blink/blink.bsg")
+    # A BotStudio automaton is run (mazesim.webots.botstudio).
+    found, _ = controller_of({"name": "e-puck", "controller": "blink"}, str(world), {})
+    assert found == str(tmp_path / "controllers" / "blink" / "blink.bsg")
+    none, why = controller_of({"name": "e-puck", "controller": "matlab"}, str(world), {})
     # A world run says so among what its robot lacks, as the run of a controller whose Python
     # package is not installed does; a robot without a controller lacks nothing.
     world.write_text(
-        '#VRML_SIM R2023b utf8\nRectangleArena { }\nE-puck { controller "blink" }\n'
+        '#VRML_SIM R2023b utf8\nRectangleArena { }\nE-puck { controller "matlab" }\n'
         'E-puck { translation 0.2 0 0 name "e-puck(1)" controller "void" }\n'
     )
     run = run_world(str(world), seconds=0.2)
@@ -143,7 +146,7 @@ def test_a_c_controller_is_found_in_its_webots_folder(tmp_path: Path) -> None:
     found, _ = controller_of({"name": "e", "controller": "avoid"}, world, {})
     assert found == str(tmp_path / "controllers" / "avoid" / "avoid.c")
     none, why = controller_of({"name": "e", "controller": "absent"}, world, {})
-    assert none is None and "absent.py, .c, .cpp, .cc, .cxx" in why
+    assert none is None and "absent.py, .c, .cpp, .cc, .cxx, .bsg" in why
 
 
 def test_a_cpp_controller_in_a_cc_file_is_found_in_its_webots_folder(tmp_path: Path) -> None:

@@ -8,10 +8,10 @@ it. Each ``[[project]]`` table has these fields:
 - ``repo``: ``owner/name`` of the public repository; ``commit``: 40 hex digits;
 - ``world``: the ``.wbt`` file's path in the repository;
 - ``controllers``: the controller files' paths (the first is the one run: the robot's own);
-- ``language``: ``python``, ``c`` or ``cpp`` (what the first controller is written in), or a
-  language Webots runs controllers in that mazesim names as one it does not run (``java``,
-  ``matlab``, ``botstudio``: :data:`NOT_RUN`), whose row is then not run, its cause what the
-  run says of it;
+- ``language``: ``python``, ``c``, ``cpp`` or ``botstudio`` (what the first controller is
+  written in: a BotStudio automaton for the last), or a language Webots runs controllers in that
+  mazesim names as one it does not run (``java``, ``matlab``: :data:`NOT_RUN`), whose row is
+  then not run, its cause what the run says of it;
 - ``does``: what the project does, in a sentence;
 - ``seconds``: the simulated time a run lasts; the run may take 30 s of wall-clock time more
   (``runner.GRACE_S``), so a controller whose own ``time.sleep`` calls cost wall-clock time (in
@@ -47,8 +47,8 @@ from mazesim.webots.runner import OTHER_LANGUAGES
 from webots_corpus.facts import parse_fact
 
 MANIFEST = Path(__file__).with_name("manifest.toml")
-#: The languages of the controllers mazesim runs.
-RUN = ("python", "c", "cpp")
+#: The languages of the controllers mazesim runs (``botstudio``: a BotStudio automaton).
+RUN = ("python", "c", "cpp", "botstudio")
 #: The other languages of Webots' controllers, which mazesim's runner names as not run.
 NOT_RUN = tuple(sorted({language.lower() for language in OTHER_LANGUAGES.values()}))
 LANGUAGES = RUN + NOT_RUN

@@ -28,7 +28,7 @@ Results: **pass**, every fact held; **fail**, a fact did not (the cause says whi
 was measured, and ends with what is known of why, `known:`, when the manifest says it);
 **timeout**, the run was stopped; **not run**, the run said at its start that a
 Webots feature or a Python package the controller needs is missing, and the facts did not hold,
-or that the controller is in a language mazesim does not run (BotStudio, MATLAB, Java), whatever
+or that the controller is in a language mazesim does not run (MATLAB, Java), whatever
 the facts (the cause is that statement, the run's `missing_features`); **broken itself**, the
 project does not work in Webots either (the cause says why); **skipped**, no mirror; **error**,
 the world could not be exported or imported, or the controller could not be built. A cause also

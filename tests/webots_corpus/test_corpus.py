@@ -230,19 +230,23 @@ def test_the_runner_exports_runs_and_checks_a_project(tmp_path: Path) -> None:
 
 
 def test_a_controller_in_a_language_mazesim_does_not_run_is_a_row_not_run(tmp_path: Path) -> None:
-    """Webots' BotStudio worlds: the manifest takes a row whose controller is a BotStudio
-    automaton (a language mazesim's runner names as one it does not run), and the row is not
-    run, its cause what the run says, though its e-puck standing still holds its facts."""
+    """Webots' MATLAB example worlds: the manifest takes a row whose controller is MATLAB (a
+    language mazesim's runner names as one it does not run), and the row is not run, its cause
+    what the run says, though its e-puck standing still holds its facts; a BotStudio automaton's
+    row runs (mazesim.webots.botstudio)."""
     world = 'WorldInfo { }\nRectangleArena { }\nE-puck {\n  controller "blink"\n}\n'
     mirrors, commit = _mirror(
         tmp_path,
         {
             "worlds/automaton.wbt": "#VRML_SIM R2023b utf8\n" + world,
-            "controllers/blink/blink.bsg": "#botstudio 4.0\n#e-puck\n",
+            "controllers/blink/blink.m": "% its code\n",
+            "controllers/drive/drive.bsg": (
+                "#botstudio 4.0\n#e-puck\n\nS;0;forward;0;0;1;" + "2;" * 10 + "100;100;\n"
+            ),
         },
     )
-    toml = PROJECT_TOML.replace('language = "python"', 'language = "botstudio"')
-    toml = toml.replace("controllers/demo/demo.py", "controllers/blink/blink.bsg")
+    toml = PROJECT_TOML.replace('language = "python"', 'language = "matlab"')
+    toml = toml.replace("controllers/demo/demo.py", "controllers/blink/blink.m")
     toml = toml.replace("worlds/demo.wbt", "worlds/automaton.wbt").replace(COMMIT, commit)
     project = replace(
         parse_manifest(toml.replace("someone/demo", "someone/tiny"))[0],
@@ -253,8 +257,16 @@ def test_a_controller_in_a_language_mazesim_does_not_run_is_a_row_not_run(tmp_pa
     assert [ok for _, ok, _ in row.checks] == [True]
     assert (row.result, row.cause) == (
         "not run",
-        "missing: a BotStudio controller controllers/blink/blink.bsg, which mazesim does not run",
+        "missing: a MATLAB controller controllers/blink/blink.m, which mazesim does not run",
     )
+    driving = replace(
+        project,
+        language="botstudio",
+        controllers=("controllers/drive/drive.bsg",),
+        expect=("leaves_start 0.03",),
+    )
+    row = run_project(driving, mirrors, tmp_path / "work2", Census())
+    assert (row.result, [ok for _, ok, _ in row.checks]) == ("pass", [True])
 
 
 def test_a_whole_world_s_missing_features_are_its_own_robot_s_else_the_others_named() -> None:

@@ -689,7 +689,7 @@ def _other_language(name: str, world_path: str) -> str:
     """Why the controller ``name`` of a world does not run: "a LANGUAGE controller
     controllers/NAME/NAME.SUFFIX, which mazesim does not run" when its folder (in the project
     of ``world_path``) holds one in a language mazesim does not run (:data:`OTHER_LANGUAGES`:
-    Java, MATLAB, BotStudio), else ""."""
+    Java, MATLAB), else ""."""
     folder = os.path.dirname(os.path.abspath(world_path))
     for project in (os.path.dirname(folder), folder):
         for suffix, language in OTHER_LANGUAGES.items():

@@ -41,7 +41,14 @@ __all__ = [
 ]
 
 #: Controller languages by file suffix.
-LANGUAGES = {".py": "python", ".c": "c", ".cpp": "cpp", ".cc": "cpp", ".cxx": "cpp"}
+LANGUAGES = {
+    ".py": "python",
+    ".c": "c",
+    ".cpp": "cpp",
+    ".cc": "cpp",
+    ".cxx": "cpp",
+    ".bsg": "botstudio",
+}
 #: Most of a controller's own modules read for their imports.
 MAX_OWN_MODULES = 200
 #: The statement for a controller that opens Tk or OpenCV windows where there is no display.
@@ -568,6 +575,9 @@ def prepare_controller(file: str) -> PreparedController:
     """
     language = LANGUAGES.get(os.path.splitext(file)[1].lower(), "python")
     prepared = PreparedController(file, language)
+    if language == "botstudio":
+        # An automaton of BotStudio's states and transitions: it imports and builds nothing.
+        return prepared
     if os.path.abspath(file) in {os.path.abspath(stock) for stock in STOCK.values()}:
         # mazesim's own stock controller uses nothing mazesim lacks; the files beside it are
         # mazesim's modules, not the controller's.

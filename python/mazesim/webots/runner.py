@@ -112,19 +112,23 @@ class ControllerRun:
 
 #: The files a Webots controller folder ``controllers/NAME`` may run, ``NAME`` and one of these
 #: suffixes, in the order Webots looks for them: Python, then C and C++ sources as its default
-#: Makefile compiles them.
-CONTROLLER_SUFFIXES = (".py", *native_controller.C_SUFFIXES, *native_controller.CPP_SUFFIXES)
+#: Makefile compiles them, then a BotStudio automaton (:mod:`mazesim.webots.botstudio`).
+CONTROLLER_SUFFIXES = (
+    ".py",
+    *native_controller.C_SUFFIXES,
+    *native_controller.CPP_SUFFIXES,
+    ".bsg",
+)
+#: The program that runs a BotStudio automaton as the controller (``__file__`` its ``.bsg``).
+BOTSTUDIO_PROGRAM = "from mazesim.webots.botstudio import run_automaton\nrun_automaton(__file__)\n"
 
 
-#: The other languages Webots runs controllers in, by file suffix: mazesim runs none of them
-#: (BotStudio's ``.bsg`` is the e-puck's graphical automaton, which Webots' botstudio robot
-#: window runs).
+#: The other languages Webots runs controllers in, by file suffix: mazesim runs none of them.
 OTHER_LANGUAGES = {
     ".java": "Java",
     ".class": "Java",
     ".jar": "Java",
     ".m": "MATLAB",
-    ".bsg": "BotStudio",
 }
 #: Files that are no controller in any language, by suffix, with where they are given instead:
 #: run as Python, a world file ended in a NameError on its first table.
@@ -161,11 +165,11 @@ def controller_file(path: str | os.PathLike[str]) -> str:
     Raises:
         MazesimIOError: ``path`` is a folder without such a file.
         InvalidArgumentError: ``path`` is a controller in a language mazesim does not run
-            (:data:`OTHER_LANGUAGES`: Java, MATLAB, BotStudio), or no controller at all
+            (:data:`OTHER_LANGUAGES`: Java, MATLAB), or no controller at all
             (:data:`NOT_CONTROLLERS`: a world file, a run, a PROTO).
     """
     file = os.path.abspath(os.fspath(path))
-    expected = f"a Python, C or C++ controller ({', '.join(CONTROLLER_SUFFIXES)})"
+    expected = f"a Python, C, C++ or BotStudio controller ({', '.join(CONTROLLER_SUFFIXES)})"
     if not os.path.isdir(file):
         suffix = os.path.splitext(file)[1].lower()
         if suffix in NOT_CONTROLLERS:
@@ -283,8 +287,11 @@ def run_controller(
     file = controller_file(path)
     if prepared is None or prepared.file != file:
         prepared = prepare_controller(file)
-    native = prepared.language != "python" or not prepared.runnable
-    source = "" if native else _read_source(file)
+    native = prepared.language not in ("python", "botstudio") or not prepared.runnable
+    if prepared.language == "botstudio":
+        source = BOTSTUDIO_PROGRAM
+    else:
+        source = "" if native else _read_source(file)
     simulation = simulations.prepare(
         world,
         seconds=seconds,
@@ -320,7 +327,7 @@ def run_controller(
         display.enter_context(window_environment(prepared.environment))
         os.chdir(folder)
         # Compiled with its real file name, so that tracebacks show its own lines.
-        code = compile(source, file, "exec")
+        code = compile(source, "<botstudio>" if source is BOTSTUDIO_PROGRAM else file, "exec")
         try:
             watchdog.start()
             with users_code():

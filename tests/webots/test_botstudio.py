@@ -1,0 +1,144 @@
+"""BotStudio automata (``.bsg``, Webots' Robotics curriculum), read and run as Webots' botstudio
+robot window runs them once its Run button is pressed (#32)."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import pytest
+
+import mazesim
+from mazesim.errors import InvalidArgumentError
+from mazesim.webots import run_controller
+from mazesim.webots.botstudio import line_position, read_automaton
+from mazesim.webots.lockstep import controller_of, run_world
+
+HEADER = "#botstudio 4.0\n#e-puck\n\n"
+#: Ten LEDs left as they are and the speeds, a state's commands.
+KEEP = "2;" * 10
+
+
+def state(number: int, name: str, initial: bool, left: int, right: int, leds: str = KEEP) -> str:
+    return f"S;{number};{name};0;0;{int(initial)};{leds}{left};{right};\n"
+
+
+def transition(number: int, start: int, end: int, **conditions: int) -> str:
+    """A transition whose conditions are all none but those given by index (``c0=7``: ps0's
+    threshold 7; ``c22``: the timer; ``c24``: the camera)."""
+    values = [conditions.get(f"c{i}", 0) for i in range(26)]
+    return f"T;{number};t;0;0;{start};{end};" + "".join(f"{v};" for v in values) + "\n"
+
+
+def test_states_and_transitions_are_read_as_botstudio_writes_them() -> None:
+    text = (
+        HEADER
+        + state(0, "forward", True, 50, 50, "1;0;2;2;2;2;2;2;2;2;")
+        + state(1, "turn", False, 20, -20)
+        + transition(2, 0, 1, c0=7, c1=1, c16=57, c22=10, c24=-50, c25=1)
+        + "X;anything else is left out\n"
+    )
+    automaton = read_automaton(text)
+    forward, turn = automaton.states
+    assert (forward.initial, forward.speeds, forward.leds[:3]) == (True, (50, 50), (1, 0, 2))
+    assert automaton.initial() is forward and automaton.leaving(turn) == []
+    (step,) = automaton.leaving(forward)
+    assert (step.start, step.end, step.tenths) == (0, 1, 10)
+    assert (step.distance[0].threshold, step.distance[0].inverted) == (7, True)
+    assert (step.ground[0].threshold, step.ground[0].inverted) == (57, False)
+    assert (step.camera.threshold, step.camera.inverted) == (-50, True)
+    # A condition of threshold 0 is none; a reading below a threshold fails it, above an
+    # inverted one.
+    assert step.distance[1].holds(-1000)
+    assert step.ground[0].holds(57) and not step.ground[0].holds(56)
+    assert step.distance[0].holds(7) and not step.distance[0].holds(8)
+    # Tokens that are no whole number read 0, as Qt's toInt reads them.
+    odd = read_automaton(HEADER + "S;0;s;0;0;yes;" + KEEP + "12.5;1e3;\n")
+    assert (odd.states[0].initial, odd.states[0].speeds) == (False, (0, 0))
+    assert odd.initial() is None, "no initial state: the automaton does not run"
+
+
+@pytest.mark.parametrize(
+    ("text", "said"),
+    [
+        ("", "starting with the line '#botstudio 4.0'"),
+        ("#botstudio 4.0", "starting with the line"),
+        ("#botstudio 3.0\nS\n", "version 4.0 (Webots R2019a on), found version '3.0'"),
+        (HEADER + "S;0;s;0;0;1;2;2;\n", "line 4: expected a state of 18 fields, found 8"),
+        (HEADER + state(0, "a", True, 1, 1) + transition(1, 0, 5), "from state 0 to state 5"),
+        (HEADER + transition(1, 0, 0) + state(0, "a", True, 1, 1), "states listed before it"),
+    ],
+)
+def test_a_file_botstudio_cannot_read_is_refused_with_what_it_holds(text: str, said: str) -> None:
+    with pytest.raises(InvalidArgumentError, match="expected") as raised:
+        read_automaton(text, "a.bsg")
+    assert said in str(raised.value) and str(raised.value).startswith("a.bsg")
+
+
+def test_the_camera_reads_where_a_dark_line_crosses_its_row() -> None:
+    light, dark = 200, 10
+    assert line_position([light] * 10) == 0 and line_position([dark] * 10) == 0
+    assert line_position([dark] + [light] * 9) == -100
+    assert line_position([light] * 9 + [dark]) == 100
+    # Dark pixels 6 and 7 of 10: (6 + 7) * 100 / 10 - 100.
+    assert line_position([light] * 6 + [dark] * 2 + [light] * 2) == 30
+    assert line_position([light] * 2 + [dark] + [light] * 7) == -60
+    # Grey 50 is neither dark nor light: (4 + 4) * 100 / 6 - 100, in whole numbers.
+    assert line_position([50] * 4 + [dark] + [light]) == 33
+
+
+def write_automaton(folder: Path, name: str, text: str) -> Path:
+    path = folder / "controllers" / name / f"{name}.bsg"
+    path.parent.mkdir(parents=True)
+    path.write_text(text)
+    return path
+
+
+def test_an_automaton_drives_the_e_puck_through_its_states(tmp_path: Path) -> None:
+    """Forward at 50 (3.14 rad/s, 0.0628 m/s) until its 1 s timer, then a turn in place at 20
+    (1.256 rad/s each wheel, the other way round) until the run ends: 1 s forward, then the
+    heading turns by 1.256 * 0.02 * 2 / 0.05685 rad a second."""
+    path = write_automaton(
+        tmp_path,
+        "two_states",
+        HEADER
+        + state(0, "forward", True, 50, 50)
+        + state(1, "turn", False, 20, -20)
+        # Back to forward only once ps0 reads over 90 % (never, in the open arena).
+        + transition(2, 0, 1, c22=10)
+        + transition(3, 1, 0, c0=90),
+    )
+    world = mazesim.load_world("arena")
+    run = run_controller(path, world, seconds=2.0, noise=False)
+    assert (run.exit_status, run.error) == (0, "")
+    x, y, yaw = run.final_pose
+    start_x, start_y, start_yaw = world.start
+    assert math.hypot(x - start_x, y - start_y) == pytest.approx(0.0628, abs=0.004)
+    assert run.distance_m == pytest.approx(0.0628, abs=0.004), "turning in place adds none"
+    # About 1 s of turning clockwise (the left wheel forward).
+    rate = 1.256 * 0.02 * 2 / 0.05685
+    assert math.remainder(start_yaw - yaw, 2 * math.pi) == pytest.approx(rate, rel=0.08)
+
+
+def test_a_world_s_robot_runs_the_automaton_of_its_controller_folder(tmp_path: Path) -> None:
+    """A curriculum world: the E-puck's controller ``forward`` is ``controllers/forward/
+    forward.bsg`` (one initial state, speed 100): found, run, and the e-puck drives 6.28 rad/s
+    of its wheels, 0.126 m a second; an automaton without an initial state does not run."""
+    (tmp_path / "worlds").mkdir()
+    world = tmp_path / "worlds" / "fsm.wbt"
+    world.write_text(
+        "#VRML_SIM R2023b utf8\nRectangleArena { floorSize 2 2 }\n"
+        'E-puck { controller "forward" window "botstudio" }\n'
+        'E-puck { translation 0 0.3 0 name "idle" controller "idle" }\n'
+    )
+    path = write_automaton(tmp_path, "forward", HEADER + state(0, "forward", True, 100, 100))
+    write_automaton(tmp_path, "idle", HEADER + state(0, "still", False, 100, 100))
+    assert controller_of({"name": "e-puck", "controller": "forward"}, str(world), {}) == (
+        str(path),
+        "",
+    )
+    run = run_world(str(world), seconds=1.0)
+    driver, idle = run.robots
+    assert (driver.exit_status, driver.missing) == (0, ())
+    assert driver.distance_m == pytest.approx(0.126, abs=0.01)
+    assert idle.distance_m == 0.0
