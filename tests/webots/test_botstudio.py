@@ -142,3 +142,26 @@ def test_a_world_s_robot_runs_the_automaton_of_its_controller_folder(tmp_path: P
     assert (driver.exit_status, driver.missing) == (0, ())
     assert driver.distance_m == pytest.approx(0.126, abs=0.01)
     assert idle.distance_m == 0.0
+
+
+def test_a_proximity_condition_stops_the_e_puck_before_the_wall(tmp_path: Path) -> None:
+    """Forward at 100 until ps0 or ps7 (the two front sensors) read 25 % of 4096 (a transition
+    each, tried in the file's order), then a state of speed 0: the e-puck stops a few
+    millimetres from the arena's wall ahead, untouched, and stands there."""
+    path = write_automaton(
+        tmp_path,
+        "brake",
+        HEADER
+        + state(0, "forward", True, 100, 100)
+        + state(1, "stop", False, 0, 0)
+        + transition(2, 0, 1, c0=25)
+        + transition(3, 0, 1, c14=25),
+    )
+    world = mazesim.load_world("arena")
+    run = run_controller(path, world, seconds=12.0, noise=False)
+    assert (run.exit_status, run.error, run.collisions) == (0, "", 0)
+    # The wall's face is at x 0.495; the body (radius 0.037) stops 3.8 mm short of it, where
+    # ps0 and ps7 first read 1024 (25 * 4096 / 100).
+    gap = 0.495 - run.final_pose[0] - 0.037
+    assert 0.002 < gap < 0.006, "stopped short of the wall ahead, body clear"
+    assert run.longest_stop_s > 8.0, "and stands there until the run's end"
