@@ -118,6 +118,26 @@ def test_a_value_quoted_at_length_is_shown_shortened() -> None:
     assert str(mazesim.MazesimError("short")) == "short"
 
 
+def test_a_value_whose_repr_fails_is_quoted_as_what_it_is() -> None:
+    """A list nested 100,000 deep (its repr runs out of recursion) given where a camera's
+    width goes, and an object whose __repr__ raises, are refused with the package's own error,
+    the value described, not with the RecursionError of quoting it."""
+    from mazesim.webots.camera import Camera
+
+    nested: list[object] = []
+    for _ in range(100_000):
+        nested = [nested]
+    with pytest.raises(mazesim.errors.WrongTypeError, match="nested too deep to show"):
+        Camera.imageGetBlue(b"", nested, 0, 0)  # type: ignore[arg-type]
+
+    class Opaque:
+        def __repr__(self) -> str:
+            raise ValueError("no")
+
+    with pytest.raises(mazesim.errors.WrongTypeError, match="Opaque whose repr raised ValueError"):
+        Camera.imageGetBlue(b"", Opaque(), 0, 0)  # type: ignore[arg-type]
+
+
 def _typed_at(prompt: str, module: str) -> BaseException:
     """The exception of a callback defined by code that has no file of its own (typed at the
     prompt, given to ``python -c``), whose globals name ``module``."""

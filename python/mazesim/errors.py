@@ -97,8 +97,16 @@ def _command_line() -> Iterator[None]:
 def _shown(value: object) -> str:
     """``repr(value)`` as a message quotes it, :func:`_shortened`: every ``{value!r}`` of a
     message the package raises is written ``{_shown(value)}`` (a test of the package's source
-    keeps it so), so that a value of a million characters shows as a line."""
-    return _shortened(repr(value))
+    keeps it so), so that a value of a million characters shows as a line, and a value whose
+    ``repr`` fails (a list nested 100,000 deep, whose ``repr`` runs out of recursion; an object
+    whose ``__repr__`` raises) as what it is, not as the message's own exception."""
+    try:
+        text = repr(value)
+    except RecursionError:
+        text = f"<a {type(value).__name__} nested too deep to show>"
+    except Exception as failure:  # noqa: BLE001 - any __repr__ of the caller's may raise
+        text = f"<a {type(value).__name__} whose repr raised {type(failure).__name__}>"
+    return _shortened(text)
 
 
 class MazesimError(Exception):
