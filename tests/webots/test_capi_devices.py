@@ -3,6 +3,7 @@ mazesim's controller library, so that a C or C++ controller can use what a Pytho
 
 from __future__ import annotations
 
+import math
 import re
 from pathlib import Path
 
@@ -13,7 +14,6 @@ from mazesim.webots.devices import Device
 from mazesim.webots.importer import import_wbt
 from mazesim.webots.native_controller import CAPI
 from mazesim.webots.requirements import (
-    RANGE_READINGS,
     motor_limits,
     prepare_controller,
     range_readings,
@@ -93,20 +93,27 @@ def test_c_and_cpp_controllers_read_an_inertial_unit_and_a_lidar_as_python_does(
     yaws = [float(line.split()[3]) for line in lines if line.startswith("rpy ")]
     # The e-puck starts turned 0.5 rad and spins left on the spot.
     assert len(yaws) == 4 and yaws[0] > 0.5 and yaws == sorted(yaws)
-    assert all(line.startswith("rpy 0.000000 0.000000 ") for line in lines[::4])
-    # The lidar's range image is its node's 360 points of one layer (mazesim.webots.scanners);
-    # it has no point cloud, which the run says at its start.
+    assert all(line.startswith("rpy 0.000000 0.000000 ") for line in lines[::5])
+    # The lidar's range image is its node's 360 points of one layer (mazesim.webots.scanners),
+    # and its point cloud each range as a point in the lidar's frame, x ahead, y left, z up
+    # (WbLidar::updatePointCloud), the nearest at its range, at the heading of its place in the
+    # sweep (from fieldOfView / 2 to the left, 6.28 / 360 rad a point), timed from the reading.
     assert lines[2] == "ranges 360 resolution 360 layers 1"
-    assert lines[3] == "cloud none points 360 fov 6.280000 max 0.500000"
+    assert lines[3] == "cloud some points 360 fov 6.280000 max 0.500000"
+    points = [line.split() for line in lines if line.startswith("point ")]
+    assert len(points) == 4
+    for block, point in enumerate(points):
+        k, layer = int(point[1]), point[5]
+        x, y, z, time, reach = (float(v) for v in (*point[2:5], point[6], point[8]))
+        assert math.hypot(x, y) == pytest.approx(reach, abs=2e-4) and reach < 0.5
+        heading = 3.14 - k * 6.28 / 360
+        assert math.atan2(y, x) == pytest.approx(math.remainder(heading, 2 * math.pi), abs=1e-3)
+        assert (z, layer) == (0.0, "0")
+        assert time == pytest.approx(0.032 * 8 * (block + 1) - k * 0.032 / 360, abs=1e-4)
     assert runs[1].xs == runs[0].xs and runs[2].final_pose == runs[0].final_pose
-    calls = (
-        ["wb_lidar_get_point_cloud"],
-        ["getPointCloud"],
-    )
-    for twin, read in zip(twins, (calls[1], calls[0], calls[1])):
+    for twin in twins:
         prepared = prepare_controller(str(twin))
-        assert prepared.runnable
-        assert prepared.missing == [RANGE_READINGS.format(calls=", ".join(read))]
+        assert prepared.runnable and prepared.missing == []
 
 
 def test_a_compiled_controllers_sources_below_its_folder_are_read_for_what_it_calls(
@@ -116,10 +123,36 @@ def test_a_compiled_controllers_sources_below_its_folder_are_read_for_what_it_ca
     (tmp_path / "src").mkdir()
     (tmp_path / "webots").mkdir()
     (tmp_path / "main.cpp").write_text("int main() { return 0; }\n")
-    (tmp_path / "src" / "walls.cpp").write_text("void f(L *l) { l->getPointCloud(); }\n")
+    (tmp_path / "src" / "walls.cpp").write_text(
+        "void f(int t) { wb_range_finder_get_range_image(t); }\n"
+    )
     (tmp_path / "webots" / "motor.h").write_text("void wb_motor_set_acceleration(int, double);\n")
-    assert range_readings(str(tmp_path / "main.cpp"), "cpp") == ["getPointCloud"]
+    assert range_readings(str(tmp_path / "main.cpp"), "cpp") == ["wb_range_finder_get_range_image"]
     assert motor_limits(str(tmp_path / "main.cpp"), "cpp") == []
     # A Python controller's own packages are read for their imports, not for these calls.
     (tmp_path / "main.py").write_text("from controller import Robot\n")
     assert range_readings(str(tmp_path / "main.py"), "python") == []
+
+
+def test_a_lidar_point_lies_along_its_ray_in_either_axis_convention() -> None:
+    """``lidar_points``: a range of 4 m at 30 degrees to the left in the layer tilted up by 0.1
+    rad lies at (4 cos 30 cos 0.1, 4 sin 30 cos 0.1, 4 sin 0.1) in the FLU frame of Webots
+    R2022a on, at (-4 sin 30 cos 0.1, 4 sin 0.1, -4 cos 30 cos 0.1) in an NUE world's lidar
+    frame; the second point of a sweep of two over a 0.1 s period is timed 0.05 s earlier."""
+    from mazesim.webots.scanners import lidar_points
+
+    a, e = math.radians(30), 0.1
+    ranges = [1.0, 2.0, 3.0, 4.0]
+    flu = lidar_points(ranges, [0.0, a], [0.0, e], (5.0, 0.1), nue=False)
+    nue = lidar_points(ranges, [0.0, a], [0.0, e], (5.0, 0.1), nue=True)
+    point = flu[3]
+    assert (point.x, point.y, point.z) == pytest.approx(
+        (4 * math.cos(a) * math.cos(e), 4 * math.sin(a) * math.cos(e), 4 * math.sin(e))
+    )
+    point = nue[3]
+    assert (point.x, point.y, point.z) == pytest.approx(
+        (-4 * math.sin(a) * math.cos(e), 4 * math.sin(e), -4 * math.cos(a) * math.cos(e))
+    )
+    assert [p.layer_id for p in flu] == [0, 0, 1, 1]
+    assert [p.time for p in flu] == pytest.approx([5.0, 4.95, 5.0, 4.95])
+    assert (flu[0].x, flu[0].y, flu[0].z) == (1.0, 0.0, 0.0), "straight ahead"

@@ -115,17 +115,14 @@ SCENE_CHANGES = (
     "e-pucks and robots too in a run of the whole world (a robot that is not an e-puck is an "
     "obstacle); changes of other fields print an error and change nothing"
 )
-#: Lidar point clouds and the C API's range finder (the Python and C++ names, then the C
-#: API's; Webots reference manual, Lidar and RangeFinder), which mazesim does not simulate (a
-#: lidar's and a Python range finder's range images it does: ``mazesim.webots.scanners``).
-_RANGE_READINGS = re.compile(
-    r"\b(getPointCloud|getLayerPointCloud|wb_lidar_get_point_cloud|"
-    r"wb_lidar_get_layer_point_cloud|wb_range_finder_get_range_image)\s*\("
-)
+#: The C API's range finder (Webots reference manual, RangeFinder), which mazesim's C and C++
+#: library does not have (a lidar's range image and point cloud, and a Python range finder's
+#: range image, it simulates: ``mazesim.webots.scanners``).
+_RANGE_READINGS = re.compile(r"\b(wb_range_finder_get_range_image)\s*\(")
 #: The statement for a controller that reads them.
 RANGE_READINGS = (
-    "Webots' Lidar point clouds and C RangeFinder ({calls}): mazesim's lidar gives range "
-    "images only, so a point cloud is None (NULL in C and C++) and its size 0"
+    "Webots' C RangeFinder ({calls}): mazesim's C and C++ library has no range finder, so its "
+    "range image is NULL"
 )
 #: Wheel speed (rad/s) of a turn in place above which Webots' E-puck has been seen to turn
 #: more slowly than its wheels' kinematics say. Controllers tuned in Webots agree with the

@@ -15,21 +15,22 @@ reads the same depth across the image), its rows the same as its middle row. Dis
 from __future__ import annotations
 
 import math
+import struct
 from collections.abc import Mapping
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from mazesim.errors import _shown
-from mazesim.webots.devices import device_side
-from mazesim.webots.inert import Lidar, RangeFinder
+from mazesim.webots.devices import _print_error, device_side
+from mazesim.webots.inert import Lidar, LidarPoint, RangeFinder
 from mazesim.webots.sensors import DeviceMount
 from mazesim.webots.walls_now import WallsNow
 
 if TYPE_CHECKING:
     from mazesim.webots.simulation import RobotSimulation
 
-__all__ = ["RayLidar", "RayRangeFinder"]
+__all__ = ["RayLidar", "RayRangeFinder", "lidar_points"]
 
 
 def _number(fields: Mapping[str, Any], name: str, default: float) -> float:
@@ -91,6 +92,9 @@ class RayLidar(Lidar):
             _number(fields, "maxFrequency", 25.0),
         )
         self._value = None
+        self._cloud_enabled = False
+        #: The simulated time (s) of the last reading, the time of its first point.
+        self._read_at = 0.0
 
     def _elevations(self) -> list[float]:
         if self._layers <= 1:
@@ -98,10 +102,14 @@ class RayLidar(Lidar):
         step = self._vertical_fov / (self._layers - 1)
         return [self._vertical_fov / 2 - k * step for k in range(self._layers)]
 
-    def _read(self) -> list[float]:  # type: ignore[override]
+    def _angles(self) -> Any:
+        """Each point's heading in a layer (rad, to the left first)."""
         step = self._fov / self._points if self._points else 0.0
-        angles = self._fov / 2 - step * np.arange(self._points)
-        flat = self._rays.horizontal(angles)
+        return self._fov / 2 - step * np.arange(self._points)
+
+    def _read(self) -> list[float]:  # type: ignore[override]
+        self._read_at = float(self._simulation.time)
+        flat = self._rays.horizontal(self._angles())
         ranges: list[float] = []
         for elevation in self._elevations():
             along = flat / math.cos(elevation)
@@ -121,6 +129,65 @@ class RayLidar(Lidar):
         if image is None or not 0 <= int(layer) < self._layers:
             return None
         return image[int(layer) * self._points : (int(layer) + 1) * self._points]
+
+    def enablePointCloud(self) -> None:
+        """Makes the point cloud, read at each reading of the range image."""
+        self._cloud_enabled = True
+
+    def disablePointCloud(self) -> None:
+        """Stops the point cloud."""
+        self._cloud_enabled = False
+
+    def isPointCloudEnabled(self) -> bool:
+        """Whether :meth:`enablePointCloud` was called (and not undone)."""
+        return self._cloud_enabled
+
+    def getPointCloud(self, data_type: str = "list") -> list[LidarPoint] | bytes | None:  # type: ignore[override]
+        """Every layer's points, the top layer first: each range of the range image as a point
+        in the lidar's frame (see :func:`lidar_points`); None, with Webots' message, while the
+        point cloud or the lidar is disabled. ``data_type="buffer"``: the points packed as
+        Webots' ``WbLidarPoint`` structs (x, y, z float32, layer_id int32, time float32)."""
+        points = self._cloud("wb_lidar_get_point_cloud")
+        return None if points is None else _as_data_type(points, data_type)
+
+    def getLayerPointCloud(  # type: ignore[override]
+        self, layer: int, data_type: str = "list"
+    ) -> list[LidarPoint] | bytes | None:
+        """Layer ``layer``'s points, or None (with Webots' message for a layer the lidar has
+        not)."""
+        points = self._cloud("wb_lidar_get_layer_point_cloud")
+        if points is None:
+            return None
+        if not (isinstance(layer, int) and 0 <= layer < self._layers):
+            _print_error(
+                "Error: wb_lidar_get_layer_point_cloud() called with an invalid 'layer' argument."
+            )
+            return None
+        chosen = points[layer * self._points : (layer + 1) * self._points]
+        return _as_data_type(chosen, data_type)
+
+    def _cloud(self, function: str) -> list[LidarPoint] | None:
+        if not self._cloud_enabled:
+            _print_error(
+                f"Error: {function}() called for a lidar with point cloud disabled. Please use: "
+                "wb_lidar_enable_point_cloud()."
+            )
+            return None
+        if self._period_ms == 0:
+            _print_error(
+                f"Error: {function}() called for a disabled device! Please use: wb_lidar_enable()."
+            )
+            return None
+        image = self._value
+        if not isinstance(image, list):  # before the first period: the memory's zeros
+            return [LidarPoint() for _ in range(self._points * self._layers)]
+        return lidar_points(
+            image,
+            self._angles(),
+            self._elevations(),
+            (self._read_at, self._period_ms / 1000.0),
+            bool(getattr(self._simulation.scene, "nue", False)),
+        )
 
     def getHorizontalResolution(self) -> int:
         """The node's ``horizontalResolution``."""
@@ -161,6 +228,44 @@ class RayLidar(Lidar):
     def getMaxFrequency(self) -> float:
         """The node's ``maxFrequency`` (Hz)."""
         return self._frequencies[1]
+
+
+def lidar_points(
+    ranges: list[float],
+    headings: Any,
+    elevations: list[float],
+    timing: tuple[float, float],
+    nue: bool,
+) -> list[LidarPoint]:
+    """A lidar's range image as its point cloud (``WbLidar::updatePointCloud``): the range ``r``
+    of heading ``a`` (to the left) in the layer of elevation ``e`` is the point ``(r cos a
+    cos e, r sin a cos e, r sin e)`` in the lidar's frame, x ahead, y left, z up (Webots R2022a
+    on); in a world of Webots' older NUE axes ``(-r sin a cos e, r sin e, -r cos a cos e)``, the
+    lidar looking along -z. Each point's time is the reading's ``timing[0]`` less its place
+    in the layer's sweep over the sampling period ``timing[1]`` (s), as Webots times a sweep
+    ending at the reading; a range out of reach (inf) makes an infinite point."""
+    start, period = timing
+    width = len(headings)
+    points = []
+    for layer, elevation in enumerate(elevations):
+        up, across = math.sin(elevation), math.cos(elevation)
+        for column, heading in enumerate(headings):
+            r = ranges[layer * width + column]
+            ahead, left = math.cos(heading) * across, math.sin(heading) * across
+            if nue:
+                point = LidarPoint(-r * left, r * up, -r * ahead, layer)
+            else:
+                point = LidarPoint(r * ahead, r * left, r * up, layer)
+            point.time = start - column * period / width if width else start
+            points.append(point)
+    return points
+
+
+def _as_data_type(points: list[LidarPoint], data_type: str) -> list[LidarPoint] | bytes:
+    """The points as a list, or for ``data_type="buffer"`` as Webots' ``WbLidarPoint`` structs."""
+    if data_type != "buffer":
+        return points
+    return b"".join(struct.pack("<fffif", p.x, p.y, p.z, p.layer_id, p.time) for p in points)
 
 
 class RayRangeFinder(RangeFinder):

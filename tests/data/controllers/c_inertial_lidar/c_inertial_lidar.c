@@ -59,6 +59,14 @@ int main(void) {
     printf("cloud %s points %d fov %s max %s\n", cloud ? "some" : "none",
            wb_lidar_get_number_of_points(lidar), number(wb_lidar_get_fov(lidar), fov),
            number(wb_lidar_get_max_range(lidar), range));
+    if (cloud && ranges) {  /* the nearest point */
+      int k = 0;
+      for (int i = 1; i < resolution * layers; i++)
+        if (ranges[i] < ranges[k])
+          k = i;
+      printf("point %d %.4f %.4f %.4f %d %.4f range %.4f\n", k, cloud[k].x, cloud[k].y, cloud[k].z,
+             cloud[k].layer_id, cloud[k].time, ranges[k]);
+    }
   }
   wb_robot_cleanup();
   return 0;

@@ -64,6 +64,14 @@ int main() {
     std::printf("cloud %s points %d fov %s max %s\n", cloud ? "some" : "none",
                 lidar->getNumberOfPoints(), number(lidar->getFov()).c_str(),
                 number(lidar->getMaxRange()).c_str());
+    if (cloud && ranges) {  // the nearest point
+      int k = 0;
+      for (int i = 1; i < resolution * layers; i++)
+        if (ranges[i] < ranges[k])
+          k = i;
+      std::printf("point %d %.4f %.4f %.4f %d %.4f range %.4f\n", k, cloud[k].x, cloud[k].y,
+                  cloud[k].z, cloud[k].layer_id, cloud[k].time, ranges[k]);
+    }
   }
   return 0;
 }

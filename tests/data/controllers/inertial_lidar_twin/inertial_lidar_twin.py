@@ -34,6 +34,14 @@ while robot.step(step) != -1:
     ranges = lidar.getRangeImage()
     print(f"ranges {'none' if ranges is None else len(ranges)}", end=" ")
     print(f"resolution {lidar.getHorizontalResolution()} layers {lidar.getNumberOfLayers()}")
-    cloud = "none" if lidar.getPointCloud() is None else "some"
+    points = lidar.getPointCloud()
+    cloud = "none" if points is None else "some"
     print(f"cloud {cloud} points {lidar.getNumberOfPoints()}", end=" ")
     print(f"fov {shown(lidar.getFov())} max {shown(lidar.getMaxRange())}")
+    if points is not None and ranges is not None:  # the nearest point
+        k = min(range(len(ranges)), key=lambda i: (ranges[i], i))
+        p = points[k]
+        print(
+            f"point {k} {p.x:.4f} {p.y:.4f} {p.z:.4f} {p.layer_id} {p.time:.4f} "
+            f"range {ranges[k]:.4f}"
+        )
