@@ -63,7 +63,10 @@ def test_states_and_transitions_are_read_as_botstudio_writes_them() -> None:
     [
         ("", "starting with the line '#botstudio 4.0'"),
         ("#botstudio 4.0", "starting with the line"),
-        ("#botstudio 3.0\nS\n", "version 4.0 (Webots R2019a on), found version '3.0'"),
+        ("#botstudio 2.0\nS\n", "version 4.0 or 3.0, found version '2.0'"),
+        ("#botstudio 3.0\na;0;0;1;2;3;4;5;6;7;8\n\nt;0;0;x;y;20\n", "command:value, found '20'"),
+        ("#botstudio 3.0\na;0;0;1;2;3;4;5;6;7;8\n\nt;0;4;x;y;\n", "from state 0 to state 4"),
+        ("#botstudio 3.0\na;0;0;1;2;3;4\n", "line 2: expected a state of 11 fields, found 7"),
         (HEADER + "S;0;s;0;0;1;2;2;\n", "line 4: expected a state of 18 fields, found 8"),
         (HEADER + state(0, "a", True, 1, 1) + transition(1, 0, 5), "from state 0 to state 5"),
         (HEADER + transition(1, 0, 0) + state(0, "a", True, 1, 1), "states listed before it"),
@@ -73,6 +76,33 @@ def test_a_file_botstudio_cannot_read_is_refused_with_what_it_holds(text: str, s
     with pytest.raises(InvalidArgumentError, match="expected") as raised:
         read_automaton(text, "a.bsg")
     assert said in str(raised.value) and str(raised.value).startswith("a.bsg")
+
+
+def test_a_file_of_the_older_3_0_layout_is_read_as_botstudio_reads_it() -> None:
+    """BotStudio 3.0 (``fromStringVersion3``): states until an empty line (``name;x;y;`` then
+    eight commands: speeds fourth and fifth, LEDs turned on and off as bits sixth and seventh),
+    ids in order, the first initial; then transitions ``name;from;to;`` with two tokens left
+    out and ``command:value`` conditions (4-11 ps, 12-14 gs, 20 timer in halves of tenths, 21
+    camera in tenths, negative inverted)."""
+    text = (
+        "#botstudio 3.0\n"
+        "go;10;20;0;0;0;40;40;5;1;0;\n"
+        "turn;30;40;0;0;0;-20;20;0;0;0;\n"
+        "\n"
+        "wait;0;1;0;0;20:20;\n"
+        "near;0;1;0;0;4:-30;13:57;21:-5;\n"
+    )
+    automaton = read_automaton(text)
+    go, turn = automaton.states
+    assert (go.id, go.initial, go.speeds) == (0, True, (40, 40))
+    assert (turn.id, turn.initial, turn.speeds) == (1, False, (-20, 20))
+    # On: bits 0 and 2 (5); off: bit 0 (1), which wins: led0 off, led2 on, the rest as they are.
+    assert go.leds[:4] == (0, 2, 1, 2) and turn.leds == (2,) * 10
+    wait, near = automaton.leaving(go)
+    assert (wait.tenths, wait.end) == (10, 1)
+    assert (near.distance[0].threshold, near.distance[0].inverted) == (30, True)
+    assert (near.ground[1].threshold, near.ground[1].inverted) == (57, False)
+    assert (near.camera.threshold, near.camera.inverted) == (50, True)
 
 
 def test_the_camera_reads_where_a_dark_line_crosses_its_row() -> None:

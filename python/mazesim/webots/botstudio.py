@@ -10,10 +10,11 @@ projects/robots/gctronic/e-puck/plugins/robot_windows/botstudio at R2023b: core/
 Automaton.cpp, State.cpp, Transition.cpp, Tokenizer.cpp, e-puck/EPuckFacade.cpp,
 EPuckSensorCondition.cpp and EPuckActuatorCommand.cpp.
 
-- The file: the header ``#botstudio 4.0`` (the 3.0 layout of older files is not read), the
-  robot's line ``#e-puck``, then one state or transition a line, tokens ending at ``;``. A state:
-  ``S;id;name;x;y;initial;`` then its commands, ten LEDs (``led0``..``led9``: 0 off, 1 on, 2 as
-  they are) and the left and right speeds (whole numbers, each 0.0628 rad/s). A transition:
+- The file: the header ``#botstudio 4.0`` (files of the older 3.0 layout are read too: see
+  :func:`_read_version_3`), the robot's line ``#e-puck``, then one state or transition a line,
+  tokens ending at ``;``. A state: ``S;id;name;x;y;initial;`` then its commands, ten LEDs
+  (``led0``..``led9``: 0 off, 1 on, 2 as they are) and the left and right speeds (whole
+  numbers, each 0.0628 rad/s). A transition:
   ``T;id;name;x;y;from;to;`` then its conditions, a threshold and whether it is inverted for each
   of ``ps0``..``ps7`` and ``gs0``..``gs2``, the timer (tenths of a second, and an unused flag),
   and the camera's threshold and flag. A token that is no whole number reads 0, as Qt's
@@ -44,8 +45,10 @@ from mazesim.webots.node_types import node_type
 
 __all__ = ["Automaton", "State", "Transition", "read_automaton", "run_automaton"]
 
-#: The version of the files read (Webots' ``Model::macroVersion`` and ``microVersion``).
+#: The version of the files read (Webots' ``Model::macroVersion`` and ``microVersion``), and
+#: the older layout BotStudio still reads.
 VERSION = (4, 0)
+VERSION_3 = (3, 0)
 #: LEDs a state commands, speeds it sets, and the value of an LED it leaves as it is.
 LEDS = 10
 UNCHANGED = 2
@@ -158,8 +161,9 @@ def read_automaton(text: str, where: str = "the BotStudio file") -> Automaton:
     """The automaton of a BotStudio file's ``text``.
 
     Raises:
-        InvalidArgumentError: The text is not a BotStudio 4.0 file, or a line of it is
-            corrupted (too few fields, a transition naming a state not listed before it).
+        InvalidArgumentError: The text is not a BotStudio 4.0 or 3.0 file, or a line of it is
+            corrupted (too few fields, a transition naming a state not listed before it, a 3.0
+            condition not written ``command:value``).
     """
     first, newline, rest = text.partition("\n")
     header = [word for word in re.split(r"[#. ]", first.strip()) if word]
@@ -168,10 +172,13 @@ def read_automaton(text: str, where: str = "the BotStudio file") -> Automaton:
             f"{where}: expected a BotStudio file, starting with the line '#botstudio 4.0', "
             f"found {_shown(first)}"
         )
-    if (_whole(header[1]), _whole(header[2])) != VERSION:
+    version = (_whole(header[1]), _whole(header[2]))
+    if version == VERSION_3:
+        return _read_version_3(rest, where)
+    if version != VERSION:
         raise InvalidArgumentError(
-            f"{where}: expected a BotStudio file of version 4.0 (Webots R2019a on), found "
-            f"version {_shown(header[1] + '.' + header[2])}, whose layout mazesim does not read"
+            f"{where}: expected a BotStudio file of version 4.0 or 3.0, found version "
+            f"{_shown(header[1] + '.' + header[2])}, which BotStudio does not read either"
         )
     automaton = Automaton()
     for number, line in enumerate(rest.split("\n"), start=2):
@@ -213,6 +220,69 @@ def read_automaton(text: str, where: str = "the BotStudio file") -> Automaton:
                 )
             )
     return automaton
+
+
+def _read_version_3(rest: str, where: str) -> Automaton:
+    """The automaton of a BotStudio 3.0 file after its header (``Automaton::
+    fromStringVersion3``): states, one a line, until an empty line, then transitions. A state
+    is ``name;x;y;`` and eight commands, of which the fourth and fifth are the speeds and the
+    sixth and seventh the LEDs turned on and off (bit ``i`` for ``led<i>``); its id is its place
+    among the states, the first one initial. A transition is ``name;from;to;``, two tokens
+    left out, then conditions ``command:value``: 4-11 ``ps0``..``ps7`` and 12-14 ``gs0``..``gs2``
+    of threshold ``|value|``, 20 the timer of ``|value| / 2`` tenths of a second, 21 the camera
+    of ``10 |value|``, each inverted when the value is negative."""
+    automaton = Automaton()
+    reading_states = True
+    for number, line in enumerate(rest.split("\n"), start=2):
+        line = line.rstrip("\r")
+        at = f"{where}, line {number}"
+        if not line:
+            reading_states = False
+        elif reading_states:
+            tokens = _tokens(line, 3 + 8, "state", at)
+            values = [_whole(token) for token in tokens]
+            on, off = values[3 + 5], values[3 + 6]
+            leds = [0 if off & (1 << i) else 1 if on & (1 << i) else UNCHANGED for i in range(LEDS)]
+            count = len(automaton.states)
+            automaton.states.append(
+                State(count, tokens[0], count == 0, tuple(leds), (values[6], values[7]))
+            )
+        else:
+            automaton.transitions.append(_transition_version_3(line, automaton, at))
+    return automaton
+
+
+def _transition_version_3(line: str, automaton: Automaton, at: str) -> Transition:
+    tokens = _tokens(line, 3 + 2, "transition", at)
+    start, end = _whole(tokens[1]), _whole(tokens[2])
+    known = {state.id for state in automaton.states}
+    if start not in known or end not in known:
+        raise InvalidArgumentError(
+            f"{at}: expected a transition between states listed before it, found one from "
+            f"state {start} to state {end}"
+        )
+    distance = [Condition()] * DISTANCE_SENSORS
+    ground = [Condition()] * GROUND_SENSORS
+    tenths, camera = 0, Condition()
+    parts = line.split(";")
+    for condition in parts[5 : len(parts) - line.endswith(";")]:
+        pair = condition.split(":")
+        if len(pair) != 2:
+            raise InvalidArgumentError(
+                f"{at}: expected conditions written command:value, found {_shown(condition)}"
+            )
+        command, value = _whole(pair[0]), _whole(pair[1])
+        made = Condition(abs(value), value < 0)
+        if command == 20:
+            tenths = abs(value) // 2
+        elif command == 21:
+            camera = Condition(10 * abs(value), value < 0)
+        elif 4 <= command <= 11:
+            distance[command - 4] = made
+        elif 12 <= command <= 14:
+            ground[command - 12] = made
+    count = len(automaton.states) + len(automaton.transitions)
+    return Transition(count, tokens[0], start, end, tuple(distance), tuple(ground), tenths, camera)
 
 
 def line_position(greys: list[int]) -> int:
@@ -313,7 +383,7 @@ def run_automaton(path: str) -> None:
     a world's robot whose controller is ``NAME.bsg``).
 
     Raises:
-        InvalidArgumentError: The file is not a BotStudio 4.0 automaton (see
+        InvalidArgumentError: The file is not a BotStudio automaton BotStudio reads (see
             :func:`read_automaton`).
         MazesimIOError: The file cannot be read.
     """
