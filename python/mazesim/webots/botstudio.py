@@ -110,6 +110,14 @@ class Automaton:
     states: list[State] = field(default_factory=list)
     transitions: list[Transition] = field(default_factory=list)
 
+    def has_state(self, state_id: int) -> bool:
+        """Whether a state of that id has been listed."""
+        if len(self._ids) != len(self.states):
+            self._ids = {state.id for state in self.states}
+        return state_id in self._ids
+
+    _ids: set[int] = field(default_factory=set, repr=False, compare=False)
+
     def initial(self) -> State | None:
         """The state the automaton starts in: its one initial state (None for none or several,
         when it does not run)."""
@@ -200,8 +208,7 @@ def read_automaton(text: str, where: str = "the BotStudio file") -> Automaton:
             size = 7 + 2 * (DISTANCE_SENSORS + GROUND_SENSORS + 2)
             tokens = _tokens(line, size, "transition", at)
             values = [_whole(token) for token in tokens]
-            known = {state.id for state in automaton.states}
-            if values[5] not in known or values[6] not in known:
+            if not (automaton.has_state(values[5]) and automaton.has_state(values[6])):
                 raise InvalidArgumentError(
                     f"{at}: expected a transition between states listed before it, found one "
                     f"from state {values[5]} to state {values[6]}"
@@ -255,8 +262,7 @@ def _read_version_3(rest: str, where: str) -> Automaton:
 def _transition_version_3(line: str, automaton: Automaton, at: str) -> Transition:
     tokens = _tokens(line, 3 + 2, "transition", at)
     start, end = _whole(tokens[1]), _whole(tokens[2])
-    known = {state.id for state in automaton.states}
-    if start not in known or end not in known:
+    if not (automaton.has_state(start) and automaton.has_state(end)):
         raise InvalidArgumentError(
             f"{at}: expected a transition between states listed before it, found one from "
             f"state {start} to state {end}"
@@ -398,14 +404,20 @@ def run_automaton(path: str) -> None:
         print(f"BotStudio: the automaton has {count} initial states, not one: it does not run")
     else:
         robot.send(current)
+    first: dict[int, State] = {}
+    for state in automaton.states:
+        first.setdefault(state.id, state)
+    leaving: dict[int, list[Transition]] = {}
+    for transition in automaton.transitions:
+        leaving.setdefault(transition.start, []).append(transition)
     entered = 0.0
     while robot.robot.step(robot.step_ms) != -1:
         robot.time = float(robot.robot.getTime())
         if current is None:
             continue
-        for transition in automaton.leaving(current):
+        for transition in leaving.get(current.id, []):
             if _fired(transition, robot, entered):
-                current = automaton.state(transition.end)
+                current = first[transition.end]
                 robot.send(current)
                 entered = robot.time
                 break
