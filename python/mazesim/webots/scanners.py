@@ -243,7 +243,10 @@ def lidar_points(
     on); in a world of Webots' older NUE axes ``(-r sin a cos e, r sin e, -r cos a cos e)``, the
     lidar looking along -z. Each point's time is the reading's ``timing[0]`` less its place
     in the layer's sweep over the sampling period ``timing[1]`` (s), as Webots times a sweep
-    ending at the reading; a range out of reach (inf) makes an infinite point."""
+    ending at the reading; a range out of reach (inf) makes an infinite point. The headings are
+    those of mazesim's rays (``fieldOfView / 2 - j fieldOfView / n``), so that each point lies
+    where its ray met a wall; Webots' are half a point further round (at 512 points over 1.5708
+    rad, 0.0015 rad)."""
     start, period = timing
     width = len(headings)
     points = []
