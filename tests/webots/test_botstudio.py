@@ -195,3 +195,38 @@ def test_a_proximity_condition_stops_the_e_puck_before_the_wall(tmp_path: Path) 
     gap = 0.495 - run.final_pose[0] - 0.037
     assert 0.002 < gap < 0.006, "stopped short of the wall ahead, body clear"
     assert run.longest_stop_s > 8.0, "and stands there until the run's end"
+
+
+def test_a_mutated_file_is_read_or_refused_with_the_package_s_error() -> None:
+    """Bytes of a 4.0 and a 3.0 automaton changed, deleted or inserted at random (fixed seed,
+    600 files): each reads as an automaton or is refused with InvalidArgumentError, never
+    another exception."""
+    import random
+
+    texts = [
+        HEADER
+        + state(0, "forward", True, 50, 50, "1;0;2;2;2;2;2;2;2;2;")
+        + state(1, "turn", False, 20, -20)
+        + transition(2, 0, 1, c0=7, c1=1, c16=57, c22=10, c24=-50, c25=1)
+        + transition(3, 1, 0, c22=5),
+        "#botstudio 3.0\ngo;10;20;0;0;0;40;40;5;1;0;\nturn;3;4;0;0;0;-2;2;0;0;0;\n\n"
+        "wait;0;1;0;0;20:20;\nnear;1;0;0;0;4:-30;13:57;21:-5;\n",
+    ]
+    pieces = [";", ":", "\n", "\r", "-", "9" * 12, "", "S", "T", "\x00", "é", "#botstudio 3.0\n"]
+    chance = random.Random(20261204)
+    outcomes = {"read": 0, "refused": 0}
+    for number in range(600):
+        text = list(texts[number % 2])
+        for _ in range(chance.randint(1, 4)):
+            at = chance.randrange(len(text) + 1)
+            kind = chance.randrange(3)
+            if kind == 0 and at < len(text):
+                del text[at : at + chance.randint(1, 6)]
+            else:
+                text[at:at] = chance.choice(pieces)
+        try:
+            read_automaton("".join(text), "m.bsg")
+            outcomes["read"] += 1
+        except InvalidArgumentError:
+            outcomes["refused"] += 1
+    assert min(outcomes.values()) > 50, outcomes
