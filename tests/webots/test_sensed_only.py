@@ -130,3 +130,28 @@ def test_a_generic_range_sensor_passes_through_it_as_webots_bounding_object_rays
     )
     assert time_of_flight(NEAR_GOAL) == open_floor
     assert walled < open_floor
+
+
+def test_a_turret_lidar_measures_it_as_webots_renders_it(tmp_path: Path) -> None:
+    """Webots' lidar measures depth from a rendering of the scene (reference manual, Lidar), so
+    it sees the box the infra-red sensors see: the point straight ahead of a lidar on the turret
+    (9.5 mm behind the e-puck's centre) is at the box's near face, 0.15 m ahead of the centre;
+    with the box gone, the lidar sees nothing there. ``step(time_step=...)``, Webots' keyword
+    since R2023a, is taken."""
+    lidar = (
+        "E-puck { turretSlot [ Lidar { horizontalResolution 8 fieldOfView 6.28318 "
+        "numberOfLayers 1 maxRange 3 } ] }\n"
+    )
+
+    def ahead(text: str) -> float:
+        robot = first_step(tmp_path, lidar + text)
+        device = robot.getDevice("lidar")
+        device.enable(32)
+        robot.step(time_step=32)
+        reading = float(device.getRangeImage()[4])
+        controller.Robot.created = None
+        simulations.release()
+        return reading
+
+    assert ahead(RED_GOAL) == pytest.approx(0.15 + 0.0095, abs=0.002)
+    assert ahead("") == float("inf")

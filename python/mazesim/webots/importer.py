@@ -517,8 +517,8 @@ def import_summary(
     sensed = len(report.get("sensed_only") or [])
     if sensed:
         parts.append(
-            f"{sensed} visual-only object(s) seen by the infra-red sensors and the camera, "
-            "met by nothing else"
+            f"{sensed} visual-only object(s) seen by the infra-red sensors, the camera and a "
+            "lidar, met by nothing else"
         )
     if expanded:
         parts.append(f"PROTOs expanded: {', '.join(expanded)}")

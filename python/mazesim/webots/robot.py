@@ -302,11 +302,12 @@ class Robot(NotSimulated):
         a ``__del__`` that does nothing: a controller of that time calls ``robot.__del__()``
         and then ``exit()`` once :meth:`step` returns -1."""
 
-    def step(self, duration: float | None = None) -> int:
-        """Runs the simulation for ``duration`` ms (a whole number of basic steps, rounded up).
+    def step(self, time_step: float | None = None) -> int:
+        """Runs the simulation for ``time_step`` ms (a whole number of basic steps, rounded up;
+        the parameter has Webots' name since R2023a, ``robot.step(time_step=32)``).
 
         Args:
-            duration: Milliseconds to simulate; by default one basic time step.
+            time_step: Milliseconds to simulate; by default one basic time step.
 
         Returns:
             0, or -1 when the run's time is up, a supervisor (this robot's or, in a world run,
@@ -314,13 +315,13 @@ class Robot(NotSimulated):
             not advance then; paused, ``step(0)`` returns 0 at once).
 
         Raises:
-            InvalidArgumentError: ``duration`` is negative, beyond Webots' C int or not a
+            InvalidArgumentError: ``time_step`` is negative, beyond Webots' C int or not a
                 number.
             ControllerStopped: ``step`` was called again after it returned -1.
         """
         simulation = self._simulation
         basic = simulation.basic_time_step_ms
-        duration = basic if duration is None else float(duration)
+        duration = basic if time_step is None else float(time_step)
         if not (math.isfinite(duration) and 0.0 <= duration <= MAX_SAMPLING_PERIOD_MS):
             raise InvalidArgumentError(
                 f"Robot.step expects a duration in ms from 0 to {MAX_SAMPLING_PERIOD_MS} "
@@ -354,10 +355,10 @@ class Robot(NotSimulated):
                 return _answer_the_end(simulation)
         return 0
 
-    def stepBegin(self, duration: float | None = None) -> int:
+    def stepBegin(self, time_step: float | None = None) -> int:
         """The first half of :meth:`step`: here the whole step (``stepEnd`` returns its
         result)."""
-        self._pending = self.step(duration)
+        self._pending = self.step(time_step)
         return 0 if self._pending == 0 else -1
 
     def stepEnd(self) -> int:

@@ -49,12 +49,15 @@ def _range_image(image: object, size: int) -> list[float]:
 
 
 class _Rays:
-    """Horizontal distances to the walls along rays turned ``angles`` (rad) from a mount."""
+    """Horizontal distances to the walls along rays turned ``angles`` (rad) from a mount: the
+    walls a camera sees, the sensed-only ones (a Shape without a boundingObject) too, as
+    Webots' lidar and range finder measure depth from a rendering of the scene (reference
+    manual, Lidar: "from an OpenGL rendering, like the RangeFinder node does")."""
 
     def __init__(self, simulation: RobotSimulation, mount: DeviceMount) -> None:
         self._simulation = simulation
         self._mount = mount
-        self._walls = WallsNow(simulation)
+        self._walls = WallsNow(simulation, sensed=True)
 
     def horizontal(self, angles: np.ndarray) -> np.ndarray:
         x, y, heading = self._mount.world_pose(self._simulation.simulator.pose)

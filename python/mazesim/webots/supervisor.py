@@ -1102,10 +1102,10 @@ class Supervisor(Robot):
         if refused is not None:
             _print_error(refused)
 
-    def step(self, duration: float | None = None) -> int:
+    def step(self, time_step: float | None = None) -> int:
         """:meth:`Robot.step <mazesim.webots.robot.Robot.step>`, and a frame of the movie
         being recorded (:meth:`movieStartRecording`) after it."""
-        result = super().step(duration)
+        result = super().step(time_step)
         self._movie.frame()
         return result
 
