@@ -83,7 +83,7 @@ def test_a_bool_is_not_a_number_of_milliseconds_or_a_speed(value: bool) -> None:
     controller.Robot.created = None
     robot = controller.Robot()
     try:
-        with pytest.raises(WrongTypeError, match=r"Robot.step: duration refused: .*found a bool"):
+        with pytest.raises(WrongTypeError, match=r"Robot.step: time_step refused: .*found a bool"):
             robot.step(value)
         assert robot.getTime() == 0.0, "nothing was stepped"
         motor = robot.getDevice("left wheel motor")

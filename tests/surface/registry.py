@@ -239,7 +239,7 @@ MUST_REFUSE: dict[str, tuple[MustRefuse, ...]] = {
     ),
     # A controller's step is a whole number of ms that fits Webots' C int, as its periods are.
     "mazesim.webots.robot:Robot.step": (
-        MustRefuse({}, {"duration": ("period_2_40", "nan", "minus_one")}),
+        MustRefuse({}, {"time_step": ("period_2_40", "nan", "minus_one")}),
     ),
     # A packet an emitter can never queue (beyond the bound of Webots' unlimited bufferSize) is
     # refused before it is built.
