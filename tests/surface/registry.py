@@ -110,6 +110,12 @@ INSTANCES: dict[str, str] = {
         "__import__('mazesim.webots.supervisor', fromlist=['x']) and"
         " __import__('mazesim.webots', fromlist=['native_calls', 'simulation', 'supervisor']))"
     ),
+    # The DifferentialWheels drive of the robot of a prepared world (Webots 8's EPuck fields).
+    "mazesim.webots.differential_drive.DifferentialDrive": (
+        "(lambda w: (w.simulation.prepare(world), w.robot.Robot())[1]"
+        "._equipment.differential_drive)(__import__('mazesim.webots.robot', fromlist=['x']) and"
+        " __import__('mazesim.webots', fromlist=['robot', 'simulation']))"
+    ),
     # The walls and bodies a supervisor moves, in a world's simulator.
     "mazesim.webots.solids.WorldSolids": (
         "__import__('mazesim.webots.solids', fromlist=['x']).WorldSolids("

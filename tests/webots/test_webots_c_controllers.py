@@ -592,8 +592,9 @@ def test_globals_a_shared_header_defines_link_as_before_gcc_10(
     assert capfd.readouterr().out.splitlines()[-1] == "steps 2"
 
 
-#: Webots 8's DifferentialWheels e-puck: setSpeed in speed units, encoders in encoder units,
-#: clamped speeds, encoders set mid-run; a Python twin of the C controller below.
+#: Webots 8's DifferentialWheels e-puck: setSpeed in speed units (1500 is beyond its maxSpeed:
+#: Webots' error, the speed kept as set), encoders in encoder units, set mid-run; a Python twin
+#: of the C controller below.
 DIFFERENTIAL_WHEELS_PY = """
 from controller import DifferentialWheels
 
@@ -648,9 +649,9 @@ def test_webots_8_differential_wheels_drives_alike_in_python_and_c(
     assert (in_c.exit_status, in_python.exit_status) == (0, 0), in_python.error
     assert in_c.xs == in_python.xs and in_c.final_pose == in_python.final_pose
     assert c_out.splitlines()[1:] == python_out.splitlines()[1:]
-    assert python_out.splitlines()[0] == "unit 0.00628 max 1000.0"
+    assert python_out.splitlines()[0] == "unit 0.00628 max 6.28"
     rows = [line.split() for line in python_out.splitlines()[1:]]
-    assert rows[0][3:] == ["1000.0", "400.0", "32"], "1500 clamped to the e-puck's 1000"
+    assert rows[0][3:] == ["1500.0", "400.0", "32"], "the speed as set, as Webots keeps it"
     assert float(rows[18][1]) > float(rows[18][2]) > 0, "the left wheel turned faster"
     assert float(rows[24][1]) == pytest.approx(10.0) and float(rows[24][2]) == pytest.approx(-5.0)
     assert in_python.distance_m > 0.05

@@ -30,6 +30,7 @@ from mazesim.webots.devices import (
     _Sensor,
     device_side,
 )
+from mazesim.webots.differential_drive import EPUCK_WHEELS, DifferentialDrive
 from mazesim.webots.inert import Display, Pen, Speaker
 from mazesim.webots.joints import JointMotor, JointPositionSensor, LinearJointMotor, pair_joints
 from mazesim.webots.keyboard import Joystick, Keyboard, Mouse
@@ -328,6 +329,7 @@ class Equipment:
 
     Attributes:
         devices: The devices by name, in Webots' order.
+        differential_drive: The wheels as a ``DifferentialWheels`` node drives them.
         keyboard: The keyboard.
         mouse: The mouse.
         joystick: The joystick.
@@ -405,6 +407,11 @@ class Equipment:
                 self.devices[device.getName()] = device
         devices = list(self.devices.values())
         self._sampled = [device for device in devices if isinstance(device, _Sensor)]
+        #: The wheels as a ``DifferentialWheels`` node drives them (Webots 8's controllers).
+        self.differential_drive = DifferentialDrive(
+            simulation, self._motors, scene.wheels_node or EPUCK_WHEELS
+        )
+        self._sampled.append(self.differential_drive.encoders)
         self.keyboard = Keyboard(simulation=simulation)
         self.mouse = Mouse()
         self.joystick = Joystick()

@@ -1,12 +1,13 @@
 """The Webots functions a compiled controller waits for, run on the robot's Python objects.
 
 A C or C++ controller's radio, camera image, recognition and lens, inertial unit quaternion, lidar,
-motor torque, GPS speed, lookup table, robot battery and supervisor functions are calls over the
-link (:mod:`mazesim.webots.native_link`, message ``CALL``): a Webots C function's name and typed
-values. :class:`NativeCalls` runs each on the object that implements it for Python controllers
-(a device of the robot, such as an :class:`~mazesim.webots.radio_devices.Emitter`, a
-:class:`~mazesim.webots.camera.Camera` or an :class:`~mazesim.webots.inert.Lidar`, the
-:class:`~mazesim.webots.robot.Robot` itself, or its
+motor torque, GPS speed, lookup table, robot battery, DifferentialWheels and supervisor functions
+are calls over the link (:mod:`mazesim.webots.native_link`, message ``CALL``): a Webots C
+function's name and typed values. :class:`NativeCalls` runs each on the object that implements
+it for Python controllers (a device of the robot, such as an
+:class:`~mazesim.webots.radio_devices.Emitter`, a :class:`~mazesim.webots.camera.Camera` or an
+:class:`~mazesim.webots.inert.Lidar`, the :class:`~mazesim.webots.robot.Robot` itself, its
+:class:`~mazesim.webots.differential_drive.DifferentialDrive`, or its
 :class:`~mazesim.webots.supervisor.Supervisor` and the nodes and fields it hands out), so
 channels, ranges, queues, nodes and fields behave for a compiled controller as they do for a
 Python one, and answers typed values. The functions follow Webots' reference manual
@@ -46,8 +47,9 @@ class Function:
 
     Attributes:
         target: What its first argument is: ``"device"`` (a device tag), ``"node"`` or
-            ``"field"`` (a handle), ``"robot"`` (no argument: the robot) or ``"supervisor"``
-            (no argument: the robot's supervisor).
+            ``"field"`` (a handle), ``"robot"`` (no argument: the robot), ``"supervisor"``
+            (no argument: the robot's supervisor) or ``"differential_wheels"`` (no argument:
+            the robot's :class:`~mazesim.webots.differential_drive.DifferentialDrive`).
         method: The Python method that implements it.
         arguments: The kinds of its other arguments, one letter each: ``i`` an integer, ``f``
             a number, ``s`` a text, ``b`` bytes, ``v`` numbers, ``n`` a node handle, ``t`` a
@@ -190,6 +192,23 @@ FUNCTIONS: dict[str, Function] = {
             "wait_for_user_input_event": ("waitForUserInputEvent", "ii"),
             "wwi_send_text": ("wwiSendText", "s"),
             "wwi_receive_text": ("wwiReceiveText", ""),
+        },
+    ),
+    **_table(
+        "differential_wheels",
+        "wb_differential_wheels_",
+        {
+            "set_speed": ("setSpeed", "ff"),
+            "get_left_speed": ("getLeftSpeed", ""),
+            "get_right_speed": ("getRightSpeed", ""),
+            "get_max_speed": ("getMaxSpeed", ""),
+            "get_speed_unit": ("getSpeedUnit", ""),
+            "enable_encoders": ("enableEncoders", "i"),
+            "disable_encoders": ("disableEncoders", ""),
+            "get_encoders_sampling_period": ("getEncodersSamplingPeriod", ""),
+            "get_left_encoder": ("getLeftEncoder", ""),
+            "get_right_encoder": ("getRightEncoder", ""),
+            "set_encoders": ("setEncoders", "ff"),
         },
     ),
     **_table(
@@ -353,6 +372,8 @@ class NativeCalls:
     def _target(self, function: Function, name: str, first: Any) -> Any:
         if function.target == "robot":
             return self.robot
+        if function.target == "differential_wheels":
+            return self.robot._equipment.differential_drive
         if function.target == "supervisor":
             if not isinstance(self.robot, Supervisor):
                 _print_error(f"Error: {name}() can only be called by a supervisor.")

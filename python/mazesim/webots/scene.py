@@ -17,6 +17,7 @@ from dataclasses import dataclass, field
 
 from mazesim._paths import open_input
 from mazesim.webots.devices import device_side
+from mazesim.webots.differential_drive import WheelsNode, wheels_node
 from mazesim.webots.frames import (
     WORLD_FRAME,
     camera_heading,
@@ -187,6 +188,8 @@ class Scene:
         wheel_positions: The left and right wheel joints' positions (rad) a world saved after
             a run holds (the E-puck's ``hidden position_0_0`` and ``position_0_1``): where
             Webots restores them, so where its wheel sensors start; 0 otherwise.
+        wheels_node: The fields of the robot's node when it is a ``DifferentialWheels`` node
+            (Webots' defaults where it writes none); None for another node.
         traction_version: The E-puck PROTO's ``version`` ("1" or "2") when the robot is one
             with physics (not ``kinematic TRUE``) on HingeJoint wheels (a file of R2018a or
             later; before, a DifferentialWheels robot): its body then starts and stops as its
@@ -243,6 +246,7 @@ class Scene:
     nue: bool = False
     y_up_devices: bool = False
     wheel_positions: tuple[float, float] = (0.0, 0.0)
+    wheels_node: WheelsNode | None = None
     traction_version: str | None = None
     infrared_elevation: float = 0.0
     ground_sensors_module: bool | None = None
@@ -336,6 +340,10 @@ def _scene(
         cpu = first_value(own, "cpuConsumption", lambda f: f.numbers(1))
         scene.robot_cpu_consumption = cpu[0] if cpu else scene.robot_cpu_consumption
         scene.robot_controller = first_value(own, "controller", Field.string)
+        if robot.type_name == "DifferentialWheels":
+            written = {name: first_value(own, name, _leading(1)) for name in _WHEELS_FIELDS}
+            fields = {name: value[0] for name, value in written.items() if value is not None}
+            scene.wheels_node = wheels_node(fields, version)
         if robot.type_name in EPUCK_TYPES:
             # The E-puck PROTO's first HingeJoint is its left wheel's, the second its right's.
             scene.wheel_positions = (_saved_wheel(robot, 0), _saved_wheel(robot, 1))
@@ -400,6 +408,9 @@ def _camera_turn(rotation: Sequence[float], y_up: bool) -> tuple[float, float]:
         return camera_heading((m[8], m[2], -m[5]))
     return camera_heading((m[0], m[3], m[6]))
 
+
+#: The fields of a ``DifferentialWheels`` node its controller's side reads.
+_WHEELS_FIELDS = ("speedUnit", "maxSpeed", "encoderResolution", "encoderNoise")
 
 #: The nodes of Webots' ground sensors module of the E-puck (its gs0..gs2), in its
 #: groundSensorsSlot.
