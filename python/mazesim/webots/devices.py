@@ -602,9 +602,27 @@ class PositionSensor(_ScalarSensor):
         super().__init__(name, simulation)
         self._side = side
         self._motor: Motor | None = None
+        #: The node's ``noise`` (rad): the standard deviation of the gaussian Webots adds to
+        #: each reading before rounding it (``WbPositionSensor::position``); 0: none.
+        self._noise = 0.0
+        self._rng: np.random.Generator | None = None
+
+    def _set_noise(self, noise: float) -> None:
+        """Adds ``noise`` (rad, the node's ``noise`` field) times a gaussian draw of the run's
+        seed to each reading, before its rounding, as Webots does (none in a run without
+        noise)."""
+        self._noise = noise
+        self._rng = noise_stream(self._simulation, self._name) if noise > 0.0 else None
+
+    def _angle(self) -> float:
+        """The joint's position now (rad)."""
+        return self._simulation.wheel_angles()[self._side]
 
     def _read(self) -> float:
-        return self._simulation.wheel_angles()[self._side]
+        angle = self._angle()
+        if self._rng is not None:
+            angle += self._noise * float(self._rng.standard_normal())
+        return angle
 
     def getType(self) -> int:
         """:data:`ROTATIONAL`."""

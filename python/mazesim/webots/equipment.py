@@ -173,18 +173,24 @@ def _wheel_names(
     return names, own
 
 
-def _wheel_sensor_resolution(name: str, renamed: Sequence[Mapping[str, Any]]) -> float:
-    """The ``resolution`` of the wheel sensor ``name``: that of the world's own PositionSensor
-    node of that name (a robot saved expanded; -1, Webots' default, when it writes none), else
-    the E-puck PROTO's."""
+def _wheel_sensor_fields(name: str, renamed: Sequence[Mapping[str, Any]]) -> tuple[float, float]:
+    """The ``resolution`` and ``noise`` of the wheel sensor ``name``: those of the world's own
+    PositionSensor node of that name (a robot saved expanded; Webots' defaults -1 and 0 where it
+    writes none), else the E-puck PROTO's (0.00628, no noise)."""
     for entry in renamed:
         if str(entry.get("name")) == name:
             fields = entry.get("fields")
-            value = fields.get("resolution") if isinstance(fields, Mapping) else None
-            if isinstance(value, (int, float)) and not isinstance(value, bool):
-                return float(value)
-            return -1.0
-    return EPUCK_WHEEL_SENSOR_RESOLUTION
+            fields = fields if isinstance(fields, Mapping) else {}
+            return _number_field(fields, "resolution", -1.0), _number_field(fields, "noise", 0.0)
+    return EPUCK_WHEEL_SENSOR_RESOLUTION, 0.0
+
+
+def _number_field(fields: Mapping[str, Any], name: str, default: float) -> float:
+    """A node's number field as the import gives it, or Webots' ``default``."""
+    value = fields.get(name)
+    if isinstance(value, (int, float)) and not isinstance(value, bool):
+        return float(value)
+    return default
 
 
 def _names_a_side(name: str) -> bool:
@@ -267,6 +273,8 @@ def extension_device(simulation: RobotSimulation, entry: Mapping[str, Any]) -> D
     resolution = fields.get("resolution")
     if kind in _RESOLVED_KINDS and isinstance(resolution, (int, float)):
         device._resolution = float(resolution)  # type: ignore[attr-defined]
+    if isinstance(device, PositionSensor):
+        device._set_noise(_number_field(fields, "noise", 0.0))
     return device
 
 
@@ -350,7 +358,8 @@ class Equipment:
             PositionSensor(name, simulation, side) for side, name in enumerate(sensor_names)
         ]
         for encoder in encoders:
-            encoder._resolution = _wheel_sensor_resolution(encoder.getName(), renamed_sensors)
+            encoder._resolution, noise = _wheel_sensor_fields(encoder.getName(), renamed_sensors)
+            encoder._set_noise(noise)
         self._motors = [
             Motor(name, simulation, side, encoders[side]) for side, name in enumerate(motor_names)
         ]

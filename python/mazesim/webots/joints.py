@@ -131,7 +131,7 @@ class JointPositionSensor(PositionSensor):
     def __init__(self, name: str, simulation: RobotSimulation) -> None:
         super().__init__(name, simulation, side=0)
 
-    def _read(self) -> float:
+    def _angle(self) -> float:
         motor = self._motor
         return motor._angle if isinstance(motor, JointMotor) else 0.0
 
