@@ -258,6 +258,31 @@ def test_a_missing_dependency_says_what_to_install(
     assert "internal error" not in line
 
 
+def test_a_dependency_that_fails_to_load_says_what_to_do_not_internal_error(tmp_path: Path) -> None:
+    # A compiled module that the system cannot map (a ulimit on memory, a broken install) fails
+    # with an ImportError that is no ModuleNotFoundError: installed, but it cannot be loaded.
+    fake = tmp_path / "site-packages" / "matplotlib"
+    fake.mkdir(parents=True)
+    (fake / "__init__.py").write_text(
+        "raise ImportError('_path.so: failed to map segment from shared object', "
+        f"path={str(fake / '_path.so')!r})\n"
+    )
+    result = subprocess.run(
+        [sys.executable, "-m", "mazesim", "show", "seed-maze", "-o", "seed-maze.png"],
+        cwd=tmp_path,
+        env={**os.environ, "PYTHONPATH": str(fake.parent)},
+        capture_output=True,
+        text=True,
+        timeout=300,
+        check=False,
+    )
+    line = _one_error_line(result)
+    assert "the Python package 'matplotlib', which is installed but could not be loaded" in line
+    assert "failed to map segment from shared object" in line
+    assert line.endswith(f"{sys.executable} -m pip install --force-reinstall matplotlib")
+    assert "internal error" not in line
+
+
 #: The commands that take ``--world``, as a mistaken ``--world`` is told of them.
 TAKING_WORLD = ", ".join(
     f"mazesim {command}"

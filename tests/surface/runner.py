@@ -58,10 +58,13 @@ def _allowed(error: BaseException) -> bool:
 
 def run_one(plan: dict[str, Any], world: Any, tmp: Path) -> dict[str, Any]:
     """Makes one call of the plan; says how it ended, how many characters it printed and how
-    long its error's message was."""
+    long its error's message was. A command's standard output is its product (a study's JSON,
+    a controller's lines), as long as the result it reports: what it printed is counted on its
+    standard error, where its messages go."""
     out, err = io.StringIO(), io.StringIO()
     outcome = _run_one(plan, world, tmp, out, err)
-    outcome["printed"] = len(out.getvalue()) + len(err.getvalue())
+    product = 0 if plan["path"].startswith("cli:") else len(out.getvalue())
+    outcome["printed"] = product + len(err.getvalue())
     return outcome
 
 

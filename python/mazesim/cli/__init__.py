@@ -15,6 +15,7 @@ import os
 import stat
 import sys
 from collections.abc import Iterator, Sequence
+from pathlib import Path
 from typing import Any, NoReturn
 
 import mazesim
@@ -466,16 +467,34 @@ _PIP_NAMES = {"PIL": "pillow"}
 
 
 def _missing_package(error: BaseException) -> str | None:
-    """What to install when ``error`` says a package outside mazesim is not installed (a
-    dependency left out or removed); None for any other error, a missing module of mazesim's
-    own included (a broken installation: a bug to report)."""
-    if not isinstance(error, ModuleNotFoundError) or not error.name:
+    """What to do when ``error`` says a package outside mazesim is not installed (a dependency
+    left out or removed: install it), or is installed but cannot be loaded (its compiled part
+    failed to load: too little memory for it, or a broken install); None for any other error, a
+    module of mazesim's own included (a broken installation: a bug to report)."""
+    if not isinstance(error, ImportError):
         return None
-    module = error.name.partition(".")[0]
-    if module == "mazesim":
+    module = _package_of(error)
+    if module is None or module == "mazesim":
         return None
     package = _PIP_NAMES.get(module, module)
+    if isinstance(error, ModuleNotFoundError):
+        return (
+            f"this command needs the Python package {_shown(package)}, which is not installed "
+            f"for {sys.executable}: install it with {sys.executable} -m pip install {package}"
+        )
     return (
-        f"this command needs the Python package {_shown(package)}, which is not installed for "
-        f"{sys.executable}: install it with {sys.executable} -m pip install {package}"
+        f"this command needs the Python package {_shown(package)}, which is installed but could "
+        f"not be loaded ({_one_line(str(error))}): if memory is short (a ulimit), allow more; "
+        f"else reinstall it with {sys.executable} -m pip install --force-reinstall {package}"
     )
+
+
+def _package_of(error: ImportError) -> str | None:
+    """The top-level package an import failed on: its module's name, else the folder under
+    ``site-packages`` of the file that failed to load."""
+    if error.name:
+        return error.name.partition(".")[0]
+    parts = Path(error.path).parts if error.path else ()
+    if "site-packages" in parts and parts.index("site-packages") + 1 < len(parts):
+        return parts[parts.index("site-packages") + 1].partition(".")[0]
+    return None
