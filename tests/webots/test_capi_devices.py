@@ -5,20 +5,21 @@ from __future__ import annotations
 
 import math
 import re
+import wave
 from pathlib import Path
 
 import pytest
 
 from mazesim.webots import controller
 from mazesim.webots.devices import Device
-from mazesim.webots.importer import import_wbt
+from mazesim.webots.importer import import_wbt, import_wbt_text
 from mazesim.webots.native_controller import CAPI
 from mazesim.webots.requirements import (
     motor_limits,
     prepare_controller,
     range_readings,
 )
-from native_controllers import NEEDS_COMPILERS, run_twins
+from native_controllers import NEEDS_COMPILERS, run_twins, write_source
 
 CONTROLLERS = Path(__file__).resolve().parents[1] / "data" / "controllers"
 
@@ -28,14 +29,11 @@ HEADERS = CAPI / "include" / "webots"
 #: nothing): a C or C++ controller that includes one's header is named as needing it before it
 #: is built.
 WITHOUT_C = {
-    "Altimeter",
     "Brake",
     "Connector",
-    "Pen",
     "Radar",
     "RangeFinder",
     "Skin",
-    "Speaker",
     "VacuumGripper",
 }
 
@@ -156,3 +154,108 @@ def test_a_lidar_point_lies_along_its_ray_in_either_axis_convention() -> None:
     assert [p.layer_id for p in flu] == [0, 0, 1, 1]
     assert [p.time for p in flu] == pytest.approx([5.0, 4.95, 5.0, 4.95])
     assert (flu[0].x, flu[0].y, flu[0].z) == (1.0, 0.0, 0.0), "straight ahead"
+
+
+#: An E-puck with a Pen in its groundSensorsSlot (the e-puck's own speaker beside it).
+PEN_WORLD = (
+    "#VRML_SIM R2023b utf8\nWorldInfo { basicTimeStep 32 }\nRectangleArena { floorSize 1 1 }\n"
+    'E-puck { controller "<extern>" groundSensorsSlot [ Pen { name "pen" } ] }\n'
+)
+PEN_SPEAKER_PY = """from controller import Robot, Speaker
+robot = Robot()
+pen, speaker = robot.getDevice("pen"), robot.getDevice("speaker")
+pen.setInkColor(0xFF0000, 0.5)
+pen.write(True)
+print("language %d %s engine %s" % (speaker.setLanguage("fr-FR"), speaker.getLanguage(),
+                                    speaker.getEngine()))
+Speaker.playSound(speaker, speaker, "beep.wav", 1.0, 2.0, 0.0, False)
+speaker.speak("bonjour", 1.0)
+step = 0
+while robot.step(32) != -1:
+    step += 1
+    print("%d %d %d %d" % (step, speaker.isSoundPlaying("beep.wav"), speaker.isSoundPlaying(""),
+                           speaker.isSpeaking()))
+"""
+PEN_SPEAKER_C = """#include <stdio.h>
+#include <webots/pen.h>
+#include <webots/robot.h>
+#include <webots/speaker.h>
+int main(void) {
+  wb_robot_init();
+  WbDeviceTag pen = wb_robot_get_device("pen"), speaker = wb_robot_get_device("speaker");
+  wb_pen_set_ink_color(pen, 0xFF0000, 0.5);
+  wb_pen_write(pen, true);
+  int set = wb_speaker_set_language(speaker, "fr-FR");
+  printf("language %d %s engine %s\\n", set, wb_speaker_get_language(speaker),
+         wb_speaker_get_engine(speaker));
+  wb_speaker_play_sound(speaker, speaker, "beep.wav", 1.0, 2.0, 0.0, false);
+  wb_speaker_speak(speaker, "bonjour", 1.0);
+  int step = 0;
+  while (wb_robot_step(32) != -1) {
+    step++;
+    printf("%d %d %d %d\\n", step, wb_speaker_is_sound_playing(speaker, "beep.wav"),
+           wb_speaker_is_sound_playing(speaker, NULL), wb_speaker_is_speaking(speaker));
+  }
+  wb_robot_cleanup();
+  return 0;
+}
+"""
+PEN_SPEAKER_CPP = """#include <cstdio>
+#include <webots/Pen.hpp>
+#include <webots/Robot.hpp>
+#include <webots/Speaker.hpp>
+using namespace webots;
+int main() {
+  Robot robot;
+  Pen *pen = robot.getPen("pen");
+  Speaker *speaker = robot.getSpeaker("speaker");
+  pen->setInkColor(0xFF0000, 0.5);
+  pen->write(true);
+  int set = speaker->setLanguage("fr-FR");
+  std::printf("language %d %s engine %s\\n", set, speaker->getLanguage().c_str(),
+              speaker->getEngine().c_str());
+  Speaker::playSound(speaker, speaker, "beep.wav", 1.0, 2.0, 0.0, false);
+  speaker->speak("bonjour", 1.0);
+  int step = 0;
+  while (robot.step(32) != -1) {
+    step++;
+    std::printf("%d %d %d %d\\n", step, speaker->isSoundPlaying("beep.wav"),
+                speaker->isSoundPlaying(""), speaker->isSpeaking());
+  }
+  return 0;
+}
+"""
+
+
+def _beep(folder: Path, seconds: float) -> None:
+    """A silent WAV file ``beep.wav`` of ``seconds`` in ``folder``."""
+    with wave.open(str(folder / "beep.wav"), "wb") as clip:
+        clip.setnchannels(1)
+        clip.setsampwidth(2)
+        clip.setframerate(8000)
+        clip.writeframes(bytes(2 * int(8000 * seconds)))
+
+
+@NEEDS_COMPILERS
+@pytest.mark.usefixtures("own_cache")
+def test_c_and_cpp_controllers_use_a_pen_and_the_speaker_as_python_does(
+    tmp_path: Path, capfd: pytest.CaptureFixture[str]
+) -> None:
+    # Their headers refused the build before: a controller that includes <webots/pen.h> without
+    # calling it (a course's supervisor) did not run.
+    world, report = import_wbt_text(PEN_WORLD, "pen.wbt")
+    twins = [
+        write_source(tmp_path, "pen_py", PEN_SPEAKER_PY, ".py"),
+        write_source(tmp_path, "pen_c", PEN_SPEAKER_C),
+        write_source(tmp_path, "pen_cpp", PEN_SPEAKER_CPP, ".cpp"),
+    ]
+    for twin in twins:
+        _beep(twin.parent, 0.2)
+    runs, outputs = run_twins(capfd, *twins, world=world, report=report, seconds=0.32)
+    assert [(run.exit_status, run.error) for run in runs] == [(0, ""), (0, ""), (0, "")]
+    assert outputs[1] == outputs[0] and outputs[2] == outputs[0]
+    lines = outputs[0].splitlines()
+    assert lines[0] == "language 1 fr-FR engine pico"
+    # 0.2 s of sound at pitch 2 plays 0.1 s: through step 3 (0.096 s), over at step 4.
+    assert [line.split()[1] for line in lines[1:]] == ["1", "1", "1"] + ["0"] * 7
+    assert all(line.split()[2] == line.split()[1] and line.endswith(" 0") for line in lines[1:])

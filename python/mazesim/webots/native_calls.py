@@ -1,10 +1,10 @@
 """The Webots functions a compiled controller waits for, run on the robot's Python objects.
 
 A C or C++ controller's radio, camera image, recognition and lens, inertial unit quaternion, lidar,
-motor torque, GPS speed, lookup table, robot battery, DifferentialWheels and supervisor functions
-are calls over the link (:mod:`mazesim.webots.native_link`, message ``CALL``): a Webots C
-function's name and typed values. :class:`NativeCalls` runs each on the object that implements
-it for Python controllers (a device of the robot, such as an
+motor torque, GPS speed, lookup table, robot battery, DifferentialWheels, pen, speaker and
+supervisor functions are calls over the link (:mod:`mazesim.webots.native_link`, message
+``CALL``): a Webots C function's name and typed values. :class:`NativeCalls` runs each on the
+object that implements it for Python controllers (a device of the robot, such as an
 :class:`~mazesim.webots.radio_devices.Emitter`, a :class:`~mazesim.webots.camera.Camera` or an
 :class:`~mazesim.webots.inert.Lidar`, the :class:`~mazesim.webots.robot.Robot` itself, its
 :class:`~mazesim.webots.differential_drive.DifferentialDrive`, or its
@@ -34,7 +34,7 @@ from mazesim.errors import MazesimIOError, _shown
 from mazesim.webots.camera import CameraRecognitionObject
 from mazesim.webots.devices import _print_error
 from mazesim.webots.field import Field
-from mazesim.webots.inert import ContactPoint, LidarPoint
+from mazesim.webots.inert import ContactPoint, LidarPoint, Speaker
 from mazesim.webots.supervisor import Node, Supervisor
 from mazesim.webots.supervisor_refusal import _refusal_of
 
@@ -48,8 +48,10 @@ class Function:
     Attributes:
         target: What its first argument is: ``"device"`` (a device tag), ``"node"`` or
             ``"field"`` (a handle), ``"robot"`` (no argument: the robot), ``"supervisor"``
-            (no argument: the robot's supervisor) or ``"differential_wheels"`` (no argument:
-            the robot's :class:`~mazesim.webots.differential_drive.DifferentialDrive`).
+            (no argument: the robot's supervisor), ``"differential_wheels"`` (no argument:
+            the robot's :class:`~mazesim.webots.differential_drive.DifferentialDrive`) or
+            ``"speakers"`` (no argument: the :class:`~mazesim.webots.inert.Speaker` class,
+            whose ``playSound`` takes both speakers).
         method: The Python method that implements it.
         arguments: The kinds of its other arguments, one letter each: ``i`` an integer, ``f``
             a number, ``s`` a text, ``b`` bytes, ``v`` numbers, ``n`` a node handle, ``t`` a
@@ -192,6 +194,24 @@ FUNCTIONS: dict[str, Function] = {
             "wait_for_user_input_event": ("waitForUserInputEvent", "ii"),
             "wwi_send_text": ("wwiSendText", "s"),
             "wwi_receive_text": ("wwiReceiveText", ""),
+        },
+    ),
+    **_table(
+        "device", "wb_pen_", {"write": ("write", "i"), "set_ink_color": ("setInkColor", "if")}
+    ),
+    "wb_speaker_play_sound": Function("speakers", "playSound", "ttsfffi"),
+    **_table(
+        "device",
+        "wb_speaker_",
+        {
+            "stop": ("stop", "s"),
+            "is_sound_playing": ("isSoundPlaying", "s"),
+            "set_engine": ("setEngine", "s"),
+            "set_language": ("setLanguage", "s"),
+            "get_engine": ("getEngine", ""),
+            "get_language": ("getLanguage", ""),
+            "speak": ("speak", "sf"),
+            "is_speaking": ("isSpeaking", ""),
         },
     ),
     **_table(
@@ -374,6 +394,8 @@ class NativeCalls:
             return self.robot
         if function.target == "differential_wheels":
             return self.robot._equipment.differential_drive
+        if function.target == "speakers":
+            return Speaker
         if function.target == "supervisor":
             if not isinstance(self.robot, Supervisor):
                 _print_error(f"Error: {name}() can only be called by a supervisor.")

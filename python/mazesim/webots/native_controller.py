@@ -694,7 +694,11 @@ def drive(
     theirs.close()
     link = native_link.RobotLink(ours, robot, facts)
     stopped, failure = False, ""
+    saved_cwd = os.getcwd()
     try:
+        # The calls it makes are served in its folder, as a Python controller's run there: a
+        # relative path it passes (a sound, a saved image) names a file beside it.
+        os.chdir(folder)
         stopped = _serve(link, robot)
     except native_link.LinkClosed:
         pass
@@ -707,6 +711,7 @@ def drive(
         process.wait()
         raise
     finally:
+        os.chdir(saved_cwd)
         ours.close()
     try:
         status = process.wait(timeout=GRACE_SECONDS)

@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include <webots/accelerometer.h>
+#include <webots/altimeter.h>
 #include <webots/camera.h>
 #include <webots/compass.h>
 #include <webots/device.h>
@@ -119,6 +120,7 @@ SCALAR_SENSOR(wb_distance_sensor)
 SCALAR_SENSOR(wb_light_sensor)
 SCALAR_SENSOR(wb_position_sensor)
 SCALAR_SENSOR(wb_touch_sensor)
+SCALAR_SENSOR(wb_altimeter)
 VECTOR_SENSOR(wb_gps)
 VECTOR_SENSOR(wb_compass)
 VECTOR_SENSOR(wb_accelerometer)

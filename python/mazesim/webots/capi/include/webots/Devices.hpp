@@ -9,6 +9,7 @@
 
 #include <webots/Device.hpp>
 #include <webots/accelerometer.h>
+#include <webots/altimeter.h>
 #include <webots/camera.h>
 #include <webots/compass.h>
 #include <webots/display.h>
@@ -22,8 +23,10 @@
 #include <webots/lidar.h>
 #include <webots/light_sensor.h>
 #include <webots/motor.h>
+#include <webots/pen.h>
 #include <webots/position_sensor.h>
 #include <webots/receiver.h>
+#include <webots/speaker.h>
 #include <webots/touch_sensor.h>
 
 // A sensor's lookup table (rows of input, output, noise) as Webots' C++ classes give it.
@@ -80,6 +83,7 @@
 #define MAZESIM_Compass_EXTRA MAZESIM_LOOKUP_TABLE(wb_compass)
 #define MAZESIM_Accelerometer_EXTRA MAZESIM_LOOKUP_TABLE(wb_accelerometer)
 #define MAZESIM_Gyro_EXTRA MAZESIM_LOOKUP_TABLE(wb_gyro)
+#define MAZESIM_Altimeter_EXTRA
 #define MAZESIM_InertialUnit_EXTRA                                                               \
   const double *getQuaternion() const { return wb_inertial_unit_get_quaternion(tag); }           \
   double getNoise() const { return wb_inertial_unit_get_noise(tag); }
@@ -185,6 +189,7 @@ namespace webots {
                  get_roll_pitch_yaw)
   MAZESIM_SENSOR(Lidar, wb_lidar, const float *, getRangeImage, get_range_image)
   MAZESIM_SENSOR(Camera, wb_camera, const unsigned char *, getImage, get_image)
+  MAZESIM_SENSOR(Altimeter, wb_altimeter, double, getValue, get_value)
 
   class Motor : public Device {
   public:
@@ -260,6 +265,42 @@ namespace webots {
     explicit LED(const std::string &name) : Device(name) {}
     virtual void set(int value) { wb_led_set(tag, value); }
     int get() const { return wb_led_get(tag); }
+  };
+
+  // A pen and a speaker: nothing is drawn or heard (see their C functions).
+  class Pen : public Device {
+  public:
+    explicit Pen(WbDeviceTag tag) : Device(tag) {}
+    explicit Pen(const std::string &name) : Device(name) {}
+    virtual void write(bool write) { wb_pen_write(tag, write); }
+    virtual void setInkColor(int color, double density) {
+      wb_pen_set_ink_color(tag, color, density);
+    }
+  };
+
+  class Speaker : public Device {
+  public:
+    explicit Speaker(WbDeviceTag tag) : Device(tag) {}
+    explicit Speaker(const std::string &name) : Device(name) {}
+    static void playSound(Speaker *left, Speaker *right, const std::string &sound, double volume,
+                          double pitch, double balance, bool loop) {
+      wb_speaker_play_sound(left ? left->getTag() : 0, right ? right->getTag() : 0,
+                            sound.c_str(), volume, pitch, balance, loop);
+    }
+    void stop(const std::string &sound) { wb_speaker_stop(tag, sound.c_str()); }
+    bool isSoundPlaying(const std::string &sound) const {
+      return wb_speaker_is_sound_playing(tag, sound.c_str());
+    }
+    bool setEngine(const std::string &engine) { return wb_speaker_set_engine(tag, engine.c_str()); }
+    bool setLanguage(const std::string &language) {
+      return wb_speaker_set_language(tag, language.c_str());
+    }
+    std::string getEngine() const { return text(wb_speaker_get_engine(tag)); }
+    std::string getLanguage() const { return text(wb_speaker_get_language(tag)); }
+    void speak(const std::string &text, double volume) {
+      wb_speaker_speak(tag, text.c_str(), volume);
+    }
+    bool isSpeaking() const { return wb_speaker_is_speaking(tag); }
   };
 
   // The radio (reference manual, Emitter and Receiver pages).

@@ -113,6 +113,13 @@ namespace webots {
     Display *getDisplay(const std::string &name) {
       return dynamic_cast<Display *>(getDevice(name));
     }
+    Pen *getPen(const std::string &name) { return dynamic_cast<Pen *>(getDevice(name)); }
+    Speaker *getSpeaker(const std::string &name) {
+      return dynamic_cast<Speaker *>(getDevice(name));
+    }
+    Altimeter *getAltimeter(const std::string &name) {
+      return dynamic_cast<Altimeter *>(getDevice(name));
+    }
 
   private:
     Device *device(WbDeviceTag tag) {
@@ -160,6 +167,12 @@ namespace webots {
           return new Receiver(tag);
         case WB_NODE_DISPLAY:
           return new Display(tag);
+        case WB_NODE_PEN:
+          return new Pen(tag);
+        case WB_NODE_SPEAKER:
+          return new Speaker(tag);
+        case WB_NODE_ALTIMETER:
+          return new Altimeter(tag);
         default:
           return new Device(tag);
       }
