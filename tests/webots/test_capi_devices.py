@@ -14,11 +14,7 @@ from mazesim.webots import controller
 from mazesim.webots.devices import Device
 from mazesim.webots.importer import import_wbt, import_wbt_text
 from mazesim.webots.native_controller import CAPI
-from mazesim.webots.requirements import (
-    motor_limits,
-    prepare_controller,
-    range_readings,
-)
+from mazesim.webots.requirements import motor_limits, prepare_controller
 from native_controllers import NEEDS_COMPILERS, run_twins, write_source
 
 CONTROLLERS = Path(__file__).resolve().parents[1] / "data" / "controllers"
@@ -32,7 +28,6 @@ WITHOUT_C = {
     "Brake",
     "Connector",
     "Radar",
-    "RangeFinder",
     "Skin",
     "VacuumGripper",
 }
@@ -122,14 +117,15 @@ def test_a_compiled_controllers_sources_below_its_folder_are_read_for_what_it_ca
     (tmp_path / "webots").mkdir()
     (tmp_path / "main.cpp").write_text("int main() { return 0; }\n")
     (tmp_path / "src" / "walls.cpp").write_text(
-        "void f(int t) { wb_range_finder_get_range_image(t); }\n"
+        "void f(int t) { wb_motor_set_available_torque(t, 0.5); }\n"
     )
-    (tmp_path / "webots" / "motor.h").write_text("void wb_motor_set_acceleration(int, double);\n")
-    assert range_readings(str(tmp_path / "main.cpp"), "cpp") == ["wb_range_finder_get_range_image"]
-    assert motor_limits(str(tmp_path / "main.cpp"), "cpp") == []
+    (tmp_path / "webots" / "motor.h").write_text(
+        "void wb_motor_set_available_force(int, double);\n"
+    )
+    assert motor_limits(str(tmp_path / "main.cpp"), "cpp") == ["wb_motor_set_available_torque"]
     # A Python controller's own packages are read for their imports, not for these calls.
     (tmp_path / "main.py").write_text("from controller import Robot\n")
-    assert range_readings(str(tmp_path / "main.py"), "python") == []
+    assert motor_limits(str(tmp_path / "main.py"), "python") == []
 
 
 def test_a_lidar_point_lies_along_its_ray_in_either_axis_convention() -> None:
@@ -259,3 +255,79 @@ def test_c_and_cpp_controllers_use_a_pen_and_the_speaker_as_python_does(
     # 0.2 s of sound at pitch 2 plays 0.1 s: through step 3 (0.096 s), over at step 4.
     assert [line.split()[1] for line in lines[1:]] == ["1", "1", "1"] + ["0"] * 7
     assert all(line.split()[2] == line.split()[1] and line.endswith(" 0") for line in lines[1:])
+
+
+#: An E-puck 0.2 m from the arena's +x wall, a RangeFinder of 8 x 2 pixels in its turretSlot.
+RANGE_WORLD = (
+    "#VRML_SIM R2023b utf8\nWorldInfo { basicTimeStep 32 }\nRectangleArena { floorSize 1 1 }\n"
+    'E-puck { translation 0.3 0 0 controller "<extern>" turretSlot [ RangeFinder { '
+    'name "depth" width 8 height 2 fieldOfView 1 maxRange 2 } ] }\n'
+)
+RANGE_PY = """from controller import RangeFinder, Robot
+robot = Robot()
+finder = robot.getDevice("depth")
+finder.enable(32)
+print("size %d %d fov %.4f range %.4f %.4f" % (finder.getWidth(), finder.getHeight(),
+      finder.getFov(), finder.getMinRange(), finder.getMaxRange()))
+robot.step(32)
+image = finder.getRangeImage()
+print(" ".join("%.5f" % RangeFinder.rangeImageGetDepth(image, 8, x, 1) for x in range(8)))
+"""
+RANGE_C = """#include <stdio.h>
+#include <webots/range_finder.h>
+#include <webots/robot.h>
+int main(void) {
+  wb_robot_init();
+  WbDeviceTag finder = wb_robot_get_device("depth");
+  wb_range_finder_enable(finder, 32);
+  printf("size %d %d fov %.4f range %.4f %.4f\\n", wb_range_finder_get_width(finder),
+         wb_range_finder_get_height(finder), wb_range_finder_get_fov(finder),
+         wb_range_finder_get_min_range(finder), wb_range_finder_get_max_range(finder));
+  wb_robot_step(32);
+  const float *image = wb_range_finder_get_range_image(finder);
+  for (int x = 0; x < 8; x++)
+    printf(x ? " %.5f" : "%.5f", wb_range_finder_image_get_depth(image, 8, x, 1));
+  printf("\\n");
+  wb_robot_cleanup();
+  return 0;
+}
+"""
+RANGE_CPP = """#include <cstdio>
+#include <webots/RangeFinder.hpp>
+#include <webots/Robot.hpp>
+using namespace webots;
+int main() {
+  Robot robot;
+  RangeFinder *finder = robot.getRangeFinder("depth");
+  finder->enable(32);
+  std::printf("size %d %d fov %.4f range %.4f %.4f\\n", finder->getWidth(), finder->getHeight(),
+              finder->getFov(), finder->getMinRange(), finder->getMaxRange());
+  robot.step(32);
+  const float *image = finder->getRangeImage();
+  for (int x = 0; x < 8; x++)
+    std::printf(x ? " %.5f" : "%.5f", RangeFinder::rangeImageGetDepth(image, 8, x, 1));
+  std::printf("\\n");
+  return 0;
+}
+"""
+
+
+@NEEDS_COMPILERS
+@pytest.mark.usefixtures("own_cache")
+def test_c_and_cpp_controllers_read_a_range_finder_as_python_does(
+    tmp_path: Path, capfd: pytest.CaptureFixture[str]
+) -> None:
+    world, report = import_wbt_text(RANGE_WORLD, "range.wbt")
+    twins = [
+        write_source(tmp_path, "range_py", RANGE_PY, ".py"),
+        write_source(tmp_path, "range_c", RANGE_C),
+        write_source(tmp_path, "range_cpp", RANGE_CPP, ".cpp"),
+    ]
+    runs, outputs = run_twins(capfd, *twins, world=world, report=report, seconds=0.1)
+    assert [(run.exit_status, run.error) for run in runs] == [(0, ""), (0, ""), (0, "")]
+    assert outputs[1] == outputs[0] and outputs[2] == outputs[0]
+    size, depths = outputs[0].splitlines()
+    assert size == "size 8 2 fov 1.0000 range 0.0100 2.0000"
+    # The wall about 0.2 m ahead: each column's depth along the axis is the same (a flat wall).
+    values = [float(v) for v in depths.split()]
+    assert max(values) - min(values) < 1e-3 and 0.18 < values[0] < 0.23

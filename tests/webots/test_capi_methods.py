@@ -60,6 +60,7 @@ C_NAMES = {
     "Camera.getRecognitionSegmentationImage": "wb_camera_recognition_get_segmentation_image",
     "Camera.saveRecognitionSegmentationImage": "wb_camera_recognition_save_segmentation_image",
     "Receiver.getBytes": "wb_receiver_get_data",
+    "RangeFinder.rangeImageGetDepth": "wb_range_finder_image_get_depth",
     "Supervisor.getRoot": "wb_supervisor_node_get_root",
     "Supervisor.getSelf": "wb_supervisor_node_get_self",
     "Supervisor.getFromDef": "wb_supervisor_node_get_from_def",

@@ -281,12 +281,12 @@ def test_functions_the_library_lacks_are_named_and_the_controller_is_not_started
 
 def test_every_header_the_library_lacks_is_named_before_building(tmp_path: Path) -> None:
     source = write_controller(tmp_path, "ranging", "")
-    (source.parent / "ranging.h").write_text("#include <webots/range_finder.h>\n")
+    (source.parent / "ranging.h").write_text("#include <webots/connector.h>\n")
     source.write_text('#include <webots/radar.h>\n#include "ranging.h"\n' + source.read_text())
     prepared = prepare_controller(str(source))
     assert not prepared.runnable
     assert prepared.missing == [
-        "Webots C API header(s) mazesim does not provide: webots/radar.h, webots/range_finder.h"
+        "Webots C API header(s) mazesim does not provide: webots/connector.h, webots/radar.h"
     ]
 
 

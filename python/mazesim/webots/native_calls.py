@@ -1,10 +1,10 @@
 """The Webots functions a compiled controller waits for, run on the robot's Python objects.
 
 A C or C++ controller's radio, camera image, recognition and lens, inertial unit quaternion, lidar,
-motor torque, GPS speed, lookup table, robot battery, DifferentialWheels, pen, speaker and
-supervisor functions are calls over the link (:mod:`mazesim.webots.native_link`, message
-``CALL``): a Webots C function's name and typed values. :class:`NativeCalls` runs each on the
-object that implements it for Python controllers (a device of the robot, such as an
+motor torque, GPS speed, lookup table, robot battery, DifferentialWheels, pen, speaker, range
+finder and supervisor functions are calls over the link (:mod:`mazesim.webots.native_link`,
+message ``CALL``): a Webots C function's name and typed values. :class:`NativeCalls` runs each
+on the object that implements it for Python controllers (a device of the robot, such as an
 :class:`~mazesim.webots.radio_devices.Emitter`, a :class:`~mazesim.webots.camera.Camera` or an
 :class:`~mazesim.webots.inert.Lidar`, the :class:`~mazesim.webots.robot.Robot` itself, its
 :class:`~mazesim.webots.differential_drive.DifferentialDrive`, or its
@@ -256,6 +256,18 @@ FUNCTIONS: dict[str, Function] = {
             "set_frequency": ("setFrequency", "f"),
             "get_fov": ("getFov", ""),
             "get_vertical_fov": ("getVerticalFov", ""),
+            "get_min_range": ("getMinRange", ""),
+            "get_max_range": ("getMaxRange", ""),
+        },
+    ),
+    **_table(
+        "device",
+        "wb_range_finder_",
+        {
+            "get_range_image": ("getRangeImage", ""),
+            "get_width": ("getWidth", ""),
+            "get_height": ("getHeight", ""),
+            "get_fov": ("getFov", ""),
             "get_min_range": ("getMinRange", ""),
             "get_max_range": ("getMaxRange", ""),
         },

@@ -34,7 +34,6 @@ __all__ = [
     "missing_packages",
     "motor_limits",
     "prepare_controller",
-    "range_readings",
     "scene_changes",
     "turn_in_place_speed",
     "unbuilt",
@@ -114,15 +113,6 @@ SCENE_CHANGES = (
     "into children and empty endPoint fields and removes top-level and imported nodes, "
     "e-pucks and robots too in a run of the whole world (a robot that is not an e-puck is an "
     "obstacle); changes of other fields print an error and change nothing"
-)
-#: The C API's range finder (Webots reference manual, RangeFinder), which mazesim's C and C++
-#: library does not have (a lidar's range image and point cloud, and a Python range finder's
-#: range image, it simulates: ``mazesim.webots.scanners``).
-_RANGE_READINGS = re.compile(r"\b(wb_range_finder_get_range_image)\s*\(")
-#: The statement for a controller that reads them.
-RANGE_READINGS = (
-    "Webots' C RangeFinder ({calls}): mazesim's C and C++ library has no range finder, so its "
-    "range image is NULL"
 )
 #: Wheel speed (rad/s) of a turn in place above which Webots' E-puck has been seen to turn
 #: more slowly than its wheels' kinematics say. Controllers tuned in Webots agree with the
@@ -478,12 +468,6 @@ def motor_limits(file: str, language: str) -> list[str]:
     return _calls(file, language, _MOTOR_LIMITS)
 
 
-def range_readings(file: str, language: str) -> list[str]:
-    """The Lidar and RangeFinder reading calls (see ``_RANGE_READINGS``) in the controller's
-    source files."""
-    return _calls(file, language, _RANGE_READINGS)
-
-
 def scene_changes(file: str, language: str) -> list[str]:
     """The supervisor calls that add nodes to the running world or remove them (see
     ``_SCENE_CHANGES``; ``remove`` for ``Node.remove()``) in the controller's source files: its
@@ -652,9 +636,6 @@ def prepare_controller(file: str) -> PreparedController:
         statement = SCENE_CHANGES.format(calls=", ".join(calls))
         prepared.missing.append(statement)
         prepared.met_in_world_runs.append(statement)
-    calls = range_readings(file, language)
-    if calls:
-        prepared.missing.append(RANGE_READINGS.format(calls=", ".join(calls)))
     return prepared
 
 

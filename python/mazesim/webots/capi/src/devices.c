@@ -23,6 +23,7 @@
 #include <webots/light_sensor.h>
 #include <webots/motor.h>
 #include <webots/position_sensor.h>
+#include <webots/range_finder.h>
 #include <webots/receiver.h>
 #include <webots/robot.h>
 #include <webots/touch_sensor.h>
@@ -128,6 +129,7 @@ VECTOR_SENSOR(wb_gyro)
 SAMPLED(wb_camera)
 SAMPLED(wb_inertial_unit)
 SAMPLED(wb_lidar)
+SAMPLED(wb_range_finder)
 SAMPLED(wb_receiver)
 
 /* An inertial unit's roll, pitch and yaw come with each step's readings; its quaternion and

@@ -1,11 +1,12 @@
-/* Webots' Lidar functions (reference manual, Lidar page) other than enable, disable and the
-   sampling period (devices.c): calls served by the Python Lidar, so that a C controller reads
-   what a Python one reads. Range images and point clouds stay valid until the next such call
-   on the same lidar. */
+/* Webots' Lidar and RangeFinder functions (reference manual, Lidar and RangeFinder pages) other
+   than enable, disable and the sampling period (devices.c): calls served by the Python Lidar and
+   RangeFinder, so that a C controller reads what a Python one reads. Range images and point
+   clouds stay valid until the next such call on the same device. */
 #include <math.h>
 #include <stdlib.h>
 
 #include <webots/lidar.h>
+#include <webots/range_finder.h>
 
 #include "call.h"
 #include "link.h"
@@ -138,3 +139,40 @@ FACT(double, get_fov, number)
 FACT(double, get_vertical_fov, number)
 FACT(double, get_min_range, number)
 FACT(double, get_max_range, number)
+
+const float *wb_range_finder_get_range_image(WbDeviceTag tag) {
+  return range_image(tag, -1, "wb_range_finder_get_range_image");
+}
+
+float wb_range_finder_image_get_depth(const float *range_image, int width, int x, int y) {
+  return range_image[y * width + x];
+}
+
+int wb_range_finder_get_width(WbDeviceTag tag) {
+  return link_device(tag, "wb_range_finder_get_width")
+           ? call_device_int("wb_range_finder_get_width", tag)
+           : 0;
+}
+
+int wb_range_finder_get_height(WbDeviceTag tag) {
+  return link_device(tag, "wb_range_finder_get_height")
+           ? call_device_int("wb_range_finder_get_height", tag)
+           : 0;
+}
+
+/* A number the range finder `tag` answers to `function` (NaN for no range finder). */
+static double range_finder_number(WbDeviceTag tag, const char *function) {
+  return link_device(tag, function) ? call_device_double(function, tag) : NAN;
+}
+
+double wb_range_finder_get_fov(WbDeviceTag tag) {
+  return range_finder_number(tag, "wb_range_finder_get_fov");
+}
+
+double wb_range_finder_get_min_range(WbDeviceTag tag) {
+  return range_finder_number(tag, "wb_range_finder_get_min_range");
+}
+
+double wb_range_finder_get_max_range(WbDeviceTag tag) {
+  return range_finder_number(tag, "wb_range_finder_get_max_range");
+}

@@ -25,6 +25,7 @@
 #include <webots/motor.h>
 #include <webots/pen.h>
 #include <webots/position_sensor.h>
+#include <webots/range_finder.h>
 #include <webots/receiver.h>
 #include <webots/speaker.h>
 #include <webots/touch_sensor.h>
@@ -84,6 +85,15 @@
 #define MAZESIM_Accelerometer_EXTRA MAZESIM_LOOKUP_TABLE(wb_accelerometer)
 #define MAZESIM_Gyro_EXTRA MAZESIM_LOOKUP_TABLE(wb_gyro)
 #define MAZESIM_Altimeter_EXTRA
+#define MAZESIM_RangeFinder_EXTRA                                                                \
+  int getWidth() const { return wb_range_finder_get_width(tag); }                                \
+  int getHeight() const { return wb_range_finder_get_height(tag); }                              \
+  double getFov() const { return wb_range_finder_get_fov(tag); }                                 \
+  double getMinRange() const { return wb_range_finder_get_min_range(tag); }                      \
+  double getMaxRange() const { return wb_range_finder_get_max_range(tag); }                      \
+  static float rangeImageGetDepth(const float *image, int width, int x, int y) {                 \
+    return wb_range_finder_image_get_depth(image, width, x, y);                                  \
+  }
 #define MAZESIM_InertialUnit_EXTRA                                                               \
   const double *getQuaternion() const { return wb_inertial_unit_get_quaternion(tag); }           \
   double getNoise() const { return wb_inertial_unit_get_noise(tag); }
@@ -190,6 +200,7 @@ namespace webots {
   MAZESIM_SENSOR(Lidar, wb_lidar, const float *, getRangeImage, get_range_image)
   MAZESIM_SENSOR(Camera, wb_camera, const unsigned char *, getImage, get_image)
   MAZESIM_SENSOR(Altimeter, wb_altimeter, double, getValue, get_value)
+  MAZESIM_SENSOR(RangeFinder, wb_range_finder, const float *, getRangeImage, get_range_image)
 
   class Motor : public Device {
   public:

@@ -120,6 +120,9 @@ namespace webots {
     Altimeter *getAltimeter(const std::string &name) {
       return dynamic_cast<Altimeter *>(getDevice(name));
     }
+    RangeFinder *getRangeFinder(const std::string &name) {
+      return dynamic_cast<RangeFinder *>(getDevice(name));
+    }
 
   private:
     Device *device(WbDeviceTag tag) {
@@ -173,6 +176,8 @@ namespace webots {
           return new Speaker(tag);
         case WB_NODE_ALTIMETER:
           return new Altimeter(tag);
+        case WB_NODE_RANGE_FINDER:
+          return new RangeFinder(tag);
         default:
           return new Device(tag);
       }
