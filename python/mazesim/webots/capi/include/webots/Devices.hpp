@@ -10,8 +10,10 @@
 #include <webots/Device.hpp>
 #include <webots/accelerometer.h>
 #include <webots/altimeter.h>
+#include <webots/brake.h>
 #include <webots/camera.h>
 #include <webots/compass.h>
+#include <webots/connector.h>
 #include <webots/display.h>
 #include <webots/distance_sensor.h>
 #include <webots/emitter.h>
@@ -25,10 +27,13 @@
 #include <webots/motor.h>
 #include <webots/pen.h>
 #include <webots/position_sensor.h>
+#include <webots/radar.h>
 #include <webots/range_finder.h>
 #include <webots/receiver.h>
+#include <webots/skin.h>
 #include <webots/speaker.h>
 #include <webots/touch_sensor.h>
+#include <webots/vacuum_gripper.h>
 
 // A sensor's lookup table (rows of input, output, noise) as Webots' C++ classes give it.
 #define MAZESIM_LOOKUP_TABLE(prefix)                                                              \
@@ -85,6 +90,12 @@
 #define MAZESIM_Accelerometer_EXTRA MAZESIM_LOOKUP_TABLE(wb_accelerometer)
 #define MAZESIM_Gyro_EXTRA MAZESIM_LOOKUP_TABLE(wb_gyro)
 #define MAZESIM_Altimeter_EXTRA
+#define MAZESIM_Radar_EXTRA                                                                      \
+  int getNumberOfTargets() const { return wb_radar_get_number_of_targets(tag); }                 \
+  double getMinRange() const { return wb_radar_get_min_range(tag); }                             \
+  double getMaxRange() const { return wb_radar_get_max_range(tag); }                             \
+  double getHorizontalFov() const { return wb_radar_get_horizontal_fov(tag); }                   \
+  double getVerticalFov() const { return wb_radar_get_vertical_fov(tag); }
 #define MAZESIM_RangeFinder_EXTRA                                                                \
   int getWidth() const { return wb_range_finder_get_width(tag); }                                \
   int getHeight() const { return wb_range_finder_get_height(tag); }                              \
@@ -201,6 +212,7 @@ namespace webots {
   MAZESIM_SENSOR(Camera, wb_camera, const unsigned char *, getImage, get_image)
   MAZESIM_SENSOR(Altimeter, wb_altimeter, double, getValue, get_value)
   MAZESIM_SENSOR(RangeFinder, wb_range_finder, const float *, getRangeImage, get_range_image)
+  MAZESIM_SENSOR(Radar, wb_radar, const WbRadarTarget *, getTargets, get_targets)
 
   class Motor : public Device {
   public:
@@ -312,6 +324,74 @@ namespace webots {
       wb_speaker_speak(tag, text.c_str(), volume);
     }
     bool isSpeaking() const { return wb_speaker_is_speaking(tag); }
+  };
+
+  // Devices mazesim's robots never carry: their tags are refused (see absent_devices.c).
+  class Brake : public Device {
+  public:
+    enum { ROTATIONAL = WB_ROTATIONAL, LINEAR = WB_LINEAR };
+    explicit Brake(WbDeviceTag tag) : Device(tag) {}
+    explicit Brake(const std::string &name) : Device(name) {}
+    virtual void setDampingConstant(double dampingConstant) const {
+      wb_brake_set_damping_constant(tag, dampingConstant);
+    }
+    int getType() const { return wb_brake_get_type(tag); }
+    WbDeviceTag getMotorTag() const { return wb_brake_get_motor(tag); }
+    WbDeviceTag getPositionSensorTag() const { return wb_brake_get_position_sensor(tag); }
+  };
+
+  class Connector : public Device {
+  public:
+    explicit Connector(WbDeviceTag tag) : Device(tag) {}
+    explicit Connector(const std::string &name) : Device(name) {}
+    virtual void enablePresence(int samplingPeriod) {
+      wb_connector_enable_presence(tag, samplingPeriod);
+    }
+    virtual void disablePresence() { wb_connector_disable_presence(tag); }
+    int getPresenceSamplingPeriod() const {
+      return wb_connector_get_presence_sampling_period(tag);
+    }
+    int getPresence() const { return wb_connector_get_presence(tag); }
+    virtual void lock() { wb_connector_lock(tag); }
+    virtual void unlock() { wb_connector_unlock(tag); }
+    bool isLocked() const { return wb_connector_is_locked(tag); }
+  };
+
+  class Skin : public Device {
+  public:
+    explicit Skin(WbDeviceTag tag) : Device(tag) {}
+    explicit Skin(const std::string &name) : Device(name) {}
+    void setBoneOrientation(int index, const double orientation[4], bool absolute) {
+      wb_skin_set_bone_orientation(tag, index, orientation, absolute);
+    }
+    void setBonePosition(int index, const double position[3], bool absolute) {
+      wb_skin_set_bone_position(tag, index, position, absolute);
+    }
+    int getBoneCount() const { return wb_skin_get_bone_count(tag); }
+    std::string getBoneName(int index) const { return text(wb_skin_get_bone_name(tag, index)); }
+    const double *getBoneOrientation(int index, bool absolute) const {
+      return wb_skin_get_bone_orientation(tag, index, absolute);
+    }
+    const double *getBonePosition(int index, bool absolute) const {
+      return wb_skin_get_bone_position(tag, index, absolute);
+    }
+  };
+
+  class VacuumGripper : public Device {
+  public:
+    explicit VacuumGripper(WbDeviceTag tag) : Device(tag) {}
+    explicit VacuumGripper(const std::string &name) : Device(name) {}
+    virtual void enablePresence(int samplingPeriod) {
+      wb_vacuum_gripper_enable_presence(tag, samplingPeriod);
+    }
+    virtual void disablePresence() { wb_vacuum_gripper_disable_presence(tag); }
+    int getPresenceSamplingPeriod() const {
+      return wb_vacuum_gripper_get_presence_sampling_period(tag);
+    }
+    bool getPresence() const { return wb_vacuum_gripper_get_presence(tag); }
+    virtual void turnOn() { wb_vacuum_gripper_turn_on(tag); }
+    virtual void turnOff() { wb_vacuum_gripper_turn_off(tag); }
+    bool isOn() const { return wb_vacuum_gripper_is_on(tag); }
   };
 
   // The radio (reference manual, Emitter and Receiver pages).

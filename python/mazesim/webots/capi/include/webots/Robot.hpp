@@ -123,6 +123,15 @@ namespace webots {
     RangeFinder *getRangeFinder(const std::string &name) {
       return dynamic_cast<RangeFinder *>(getDevice(name));
     }
+    Radar *getRadar(const std::string &name) { return dynamic_cast<Radar *>(getDevice(name)); }
+    Brake *getBrake(const std::string &name) { return dynamic_cast<Brake *>(getDevice(name)); }
+    Connector *getConnector(const std::string &name) {
+      return dynamic_cast<Connector *>(getDevice(name));
+    }
+    Skin *getSkin(const std::string &name) { return dynamic_cast<Skin *>(getDevice(name)); }
+    VacuumGripper *getVacuumGripper(const std::string &name) {
+      return dynamic_cast<VacuumGripper *>(getDevice(name));
+    }
 
   private:
     Device *device(WbDeviceTag tag) {
@@ -178,6 +187,16 @@ namespace webots {
           return new Altimeter(tag);
         case WB_NODE_RANGE_FINDER:
           return new RangeFinder(tag);
+        case WB_NODE_RADAR:
+          return new Radar(tag);
+        case WB_NODE_BRAKE:
+          return new Brake(tag);
+        case WB_NODE_CONNECTOR:
+          return new Connector(tag);
+        case WB_NODE_SKIN:
+          return new Skin(tag);
+        case WB_NODE_VACUUM_GRIPPER:
+          return new VacuumGripper(tag);
         default:
           return new Device(tag);
       }

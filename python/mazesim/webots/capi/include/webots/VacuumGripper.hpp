@@ -1,0 +1,3 @@
+// Webots' C++ VacuumGripper class (<webots/VacuumGripper.hpp>): defined with mazesim's other device
+// classes.
+#include <webots/Devices.hpp>
