@@ -358,3 +358,55 @@ def test_a_c_controller_including_headers_of_devices_mazesim_never_builds_runs(
     [run], [out] = run_twins(capfd, source, seconds=0.1)
     assert (run.exit_status, run.error) == (0, "")
     assert out.splitlines()[0] == "radar 0 targets 0 locked 0"
+
+
+INPUTS_PY = """from controller import Robot
+robot = Robot()
+mouse, joystick = robot.getMouse(), robot.getJoystick()
+mouse.enable(32)
+mouse.enable3dPosition()
+joystick.enable(64)
+robot.step(32)
+state = mouse.getState()
+print("mouse %d %d %d %d %s %s" % (mouse.getSamplingPeriod(), mouse.is3dPositionEnabled(),
+      state.left, state.right, state.u, state.z))
+print("joystick %d %d [%s] %d %d %d" % (joystick.getSamplingPeriod(), joystick.isConnected(),
+      joystick.getModel(), joystick.getNumberOfAxes(), joystick.getAxisValue(0),
+      joystick.getPressedButton()))
+"""
+INPUTS_C = """#include <stdio.h>
+#include <webots/joystick.h>
+#include <webots/mouse.h>
+#include <webots/robot.h>
+int main(void) {
+  wb_robot_init();
+  wb_mouse_enable(32);
+  wb_mouse_enable_3d_position();
+  wb_joystick_enable(64);
+  wb_robot_step(32);
+  WbMouseState state = wb_mouse_get_state();
+  printf("mouse %d %d %d %d %s %s\\n", wb_mouse_get_sampling_period(),
+         wb_mouse_is_3d_position_enabled(), state.left, state.right,
+         state.u != state.u ? "nan" : "?", state.z != state.z ? "nan" : "?");
+  printf("joystick %d %d [%s] %d %d %d\\n", wb_joystick_get_sampling_period(),
+         wb_joystick_is_connected(), wb_joystick_get_model(), wb_joystick_get_number_of_axes(),
+         wb_joystick_get_axis_value(0), wb_joystick_get_pressed_button());
+  wb_robot_cleanup();
+  return 0;
+}
+"""
+
+
+@NEEDS_COMPILERS
+@pytest.mark.usefixtures("own_cache")
+def test_a_c_controller_finds_the_mouse_and_no_joystick_as_python_does(
+    tmp_path: Path, capfd: pytest.CaptureFixture[str]
+) -> None:
+    twins = [
+        write_source(tmp_path, "inputs_py", INPUTS_PY, ".py"),
+        write_source(tmp_path, "inputs_c", INPUTS_C),
+    ]
+    runs, outputs = run_twins(capfd, *twins, seconds=0.1)
+    assert [(run.exit_status, run.error) for run in runs] == [(0, ""), (0, "")]
+    assert outputs[1] == outputs[0]
+    assert outputs[0].splitlines() == ["mouse 32 1 0 0 nan nan", "joystick 64 0 [] 0 0 -1"]

@@ -42,8 +42,6 @@ WITHOUT_FUNCTIONS = {
     "AnsiCodes": "macros of <webots/utils/ansi_codes.h>",
     # Without a C or C++ side yet, inert in Python (named as needed before a build, as the
     # devices of WITHOUT_C are).
-    "Joystick": "no <webots/joystick.h> yet",
-    "Mouse": "no <webots/mouse.h> yet",
     "Motion": "no <webots/utils/motion.h> yet",
     **{name: "no C header yet (test_capi_devices.WITHOUT_C)" for name in WITHOUT_C},
 }
@@ -69,6 +67,11 @@ C_NAMES = {
     "Supervisor.getSelected": "wb_supervisor_node_get_selected",
     # A C controller asks for any device by name; the keyboard has its own functions.
     "Robot.getKeyboard": "wb_keyboard_enable",
+    "Robot.getMouse": "wb_mouse_enable",
+    "Robot.getJoystick": "wb_joystick_enable",
+    "Mouse.enable3dPosition": "wb_mouse_enable_3d_position",
+    "Mouse.disable3dPosition": "wb_mouse_disable_3d_position",
+    "Mouse.is3dPositionEnabled": "wb_mouse_is_3d_position_enabled",
 }
 
 #: Python methods whose C++ method Webots names otherwise.
@@ -96,8 +99,6 @@ PYTHON_ONLY = {
         for kind in ("bool", "int32", "float", "vec2f", "vec3f", "rotation", "color", "string")
     },
     # Devices whose C side does not exist yet (see WITHOUT_FUNCTIONS).
-    "Robot.getMouse": "no <webots/mouse.h> yet",
-    "Robot.getJoystick": "no <webots/joystick.h> yet",
     **{f"Robot.get{name}": "no C header yet (test_capi_devices.WITHOUT_C)" for name in WITHOUT_C},
 }
 

@@ -253,10 +253,10 @@ def test_a_controller_calling_on_after_its_cleanup_at_the_end_ends_quietly(
     ("body", "named"),
     [
         (
-            "  extern void wb_joystick_enable(int);\n"
-            "  extern int wb_joystick_get_number_of_axes(void);\n"
-            "  wb_joystick_enable(32);\n  wb_joystick_get_number_of_axes();",
-            "wb_joystick_enable, wb_joystick_get_number_of_axes",
+            "  extern void wb_microphone_enable(unsigned short, int);\n"
+            "  extern const void *wb_microphone_get_sample_data(unsigned short);\n"
+            "  wb_microphone_enable(1, 32);\n  wb_microphone_get_sample_data(1);",
+            "wb_microphone_enable, wb_microphone_get_sample_data",
         ),
         # Webots' older C API named its functions without wb_.
         (
@@ -281,12 +281,14 @@ def test_functions_the_library_lacks_are_named_and_the_controller_is_not_started
 
 def test_every_header_the_library_lacks_is_named_before_building(tmp_path: Path) -> None:
     source = write_controller(tmp_path, "ranging", "")
-    (source.parent / "ranging.h").write_text("#include <webots/mouse.h>\n")
-    source.write_text('#include <webots/joystick.h>\n#include "ranging.h"\n' + source.read_text())
+    (source.parent / "ranging.h").write_text("#include <webots/microphone.h>\n")
+    headers = '#include <webots/vehicle/driver.h>\n#include "ranging.h"\n'
+    source.write_text(headers + source.read_text())
     prepared = prepare_controller(str(source))
     assert not prepared.runnable
     assert prepared.missing == [
-        "Webots C API header(s) mazesim does not provide: webots/joystick.h, webots/mouse.h"
+        "Webots C API header(s) mazesim does not provide: webots/microphone.h, "
+        "webots/vehicle/driver.h"
     ]
 
 
@@ -343,11 +345,11 @@ def test_a_cpp_controller_drives_as_the_c_one_and_names_classes_it_lacks(
     assert cpp_out == c_out
     source = tmp_path / "bt" / "bt.cpp"
     source.parent.mkdir()
-    source.write_text("#include <webots/Joystick.hpp>\nint main() { return 0; }\n")
+    source.write_text("#include <webots/Microphone.hpp>\nint main() { return 0; }\n")
     prepared = prepare_controller(str(source))
     assert (prepared.language, prepared.runnable) == ("cpp", False)
     assert prepared.missing == [
-        "Webots C++ API header(s) mazesim does not provide: webots/Joystick.hpp"
+        "Webots C++ API header(s) mazesim does not provide: webots/Microphone.hpp"
     ]
 
 

@@ -239,13 +239,13 @@ def test_a_world_run_says_at_its_start_what_a_robots_controller_lacks(
     west, east = run_beside_an_avoider(
         tmp_path,
         "ranging",
-        "#include <webots/robot.h>\n#include <webots/joystick.h>\n"
+        "#include <webots/robot.h>\n#include <webots/microphone.h>\n"
         "int main(void) { wb_robot_init(); while (wb_robot_step(32) != -1) {} return 0; }\n",
     )
-    assert any("webots/joystick.h" in missing for missing in west.missing)
+    assert any("webots/microphone.h" in missing for missing in west.missing)
     assert east.missing == ()
     said = capsys.readouterr().err
-    assert "mazesim: missing: robot 'west':" in said and "webots/joystick.h" in said
+    assert "mazesim: missing: robot 'west':" in said and "webots/microphone.h" in said
     assert "controller not run" in west.error and west.distance_m == 0.0
     assert east.distance_m > 0.0, "the other robot runs on"
 

@@ -216,7 +216,7 @@ def test_the_runner_exports_runs_and_checks_a_project(tmp_path: Path) -> None:
     # The cause is what the run said at its start (summary.json's missing_features).
     assert c_row.result == "not run"
     assert c_row.cause.startswith(
-        "missing: Webots C++ API header(s) mazesim does not provide: webots/Joystick.hpp"
+        "missing: Webots C++ API header(s) mazesim does not provide: webots/Microphone.hpp"
     )
     assert "; import: line 7: Mystery" in c_row.cause
     broken = run_project(replace(c_project, broken="needs a door"), mirrors, work, Census())

@@ -2,9 +2,10 @@
 
 A C or C++ controller's radio, camera image, recognition and lens, inertial unit quaternion, lidar,
 motor torque, GPS speed, lookup table, robot battery, DifferentialWheels, pen, speaker, range
-finder and supervisor functions are calls over the link (:mod:`mazesim.webots.native_link`,
-message ``CALL``): a Webots C function's name and typed values. :class:`NativeCalls` runs each
-on the object that implements it for Python controllers (a device of the robot, such as an
+finder, mouse, joystick and supervisor functions are calls over the link
+(:mod:`mazesim.webots.native_link`, message ``CALL``): a Webots C function's name and typed
+values. :class:`NativeCalls` runs each on the object that implements it for Python controllers
+(a device of the robot, such as an
 :class:`~mazesim.webots.radio_devices.Emitter`, a :class:`~mazesim.webots.camera.Camera` or an
 :class:`~mazesim.webots.inert.Lidar`, the :class:`~mazesim.webots.robot.Robot` itself, its
 :class:`~mazesim.webots.differential_drive.DifferentialDrive`, or its
@@ -51,7 +52,8 @@ class Function:
             (no argument: the robot's supervisor), ``"differential_wheels"`` (no argument:
             the robot's :class:`~mazesim.webots.differential_drive.DifferentialDrive`) or
             ``"speakers"`` (no argument: the :class:`~mazesim.webots.inert.Speaker` class,
-            whose ``playSound`` takes both speakers).
+            whose ``playSound`` takes both speakers), ``"mouse"`` or ``"joystick"`` (no
+            argument: the robot's).
         method: The Python method that implements it.
         arguments: The kinds of its other arguments, one letter each: ``i`` an integer, ``f``
             a number, ``s`` a text, ``b`` bytes, ``v`` numbers, ``n`` a node handle, ``t`` a
@@ -212,6 +214,40 @@ FUNCTIONS: dict[str, Function] = {
             "get_language": ("getLanguage", ""),
             "speak": ("speak", "sf"),
             "is_speaking": ("isSpeaking", ""),
+        },
+    ),
+    **_table(
+        "mouse",
+        "wb_mouse_",
+        {
+            "enable": ("enable", "i"),
+            "disable": ("disable", ""),
+            "get_sampling_period": ("getSamplingPeriod", ""),
+            "enable_3d_position": ("enable3dPosition", ""),
+            "disable_3d_position": ("disable3dPosition", ""),
+            "is_3d_position_enabled": ("is3dPositionEnabled", ""),
+            "get_state": ("getState", ""),
+        },
+    ),
+    **_table(
+        "joystick",
+        "wb_joystick_",
+        {
+            "enable": ("enable", "i"),
+            "disable": ("disable", ""),
+            "get_sampling_period": ("getSamplingPeriod", ""),
+            "is_connected": ("isConnected", ""),
+            "get_model": ("getModel", ""),
+            "get_number_of_axes": ("getNumberOfAxes", ""),
+            "get_axis_value": ("getAxisValue", "i"),
+            "get_number_of_povs": ("getNumberOfPovs", ""),
+            "get_pov_value": ("getPovValue", "i"),
+            "get_pressed_button": ("getPressedButton", ""),
+            "set_constant_force": ("setConstantForce", "i"),
+            "set_constant_force_duration": ("setConstantForceDuration", "f"),
+            "set_auto_centering_gain": ("setAutoCenteringGain", "f"),
+            "set_resistance_gain": ("setResistanceGain", "f"),
+            "set_force_axis": ("setForceAxis", "i"),
         },
     ),
     **_table(
@@ -408,6 +444,10 @@ class NativeCalls:
             return self.robot._equipment.differential_drive
         if function.target == "speakers":
             return Speaker
+        if function.target == "mouse":
+            return self.robot.getMouse()
+        if function.target == "joystick":
+            return self.robot.getJoystick()
         if function.target == "supervisor":
             if not isinstance(self.robot, Supervisor):
                 _print_error(f"Error: {name}() can only be called by a supervisor.")

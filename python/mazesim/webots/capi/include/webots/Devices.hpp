@@ -20,11 +20,13 @@
 #include <webots/gps.h>
 #include <webots/gyro.h>
 #include <webots/inertial_unit.h>
+#include <webots/joystick.h>
 #include <webots/keyboard.h>
 #include <webots/led.h>
 #include <webots/lidar.h>
 #include <webots/light_sensor.h>
 #include <webots/motor.h>
+#include <webots/mouse.h>
 #include <webots/pen.h>
 #include <webots/position_sensor.h>
 #include <webots/radar.h>
@@ -494,6 +496,44 @@ namespace webots {
         wb_display_image_delete(tag, ir->getImageRef());
       delete ir;
     }
+  };
+
+  // The headless run's mouse (no button, the pointer outside the view) and no joystick.
+  class Mouse {
+  public:
+    virtual ~Mouse() {}
+    virtual void enable(int samplingPeriod) { wb_mouse_enable(samplingPeriod); }
+    virtual void disable() { wb_mouse_disable(); }
+    int getSamplingPeriod() const { return wb_mouse_get_sampling_period(); }
+    void enable3dPosition() { wb_mouse_enable_3d_position(); }
+    void disable3dPosition() { wb_mouse_disable_3d_position(); }
+    bool is3dPositionEnabled() const { return wb_mouse_is_3d_position_enabled(); }
+    const WbMouseState getState() const { return wb_mouse_get_state(); }
+  };
+
+  class Joystick {
+  public:
+    virtual ~Joystick() {}
+    virtual void enable(int samplingPeriod) { wb_joystick_enable(samplingPeriod); }
+    virtual void disable() { wb_joystick_disable(); }
+    int getSamplingPeriod() const { return wb_joystick_get_sampling_period(); }
+    bool isConnected() const { return wb_joystick_is_connected(); }
+    std::string getModel() const {
+      const char *model = wb_joystick_get_model();
+      return model ? model : "";
+    }
+    int getNumberOfAxes() const { return wb_joystick_get_number_of_axes(); }
+    int getAxisValue(int axis) const { return wb_joystick_get_axis_value(axis); }
+    int getNumberOfPovs() const { return wb_joystick_get_number_of_povs(); }
+    int getPovValue(int pov) const { return wb_joystick_get_pov_value(pov); }
+    int getPressedButton() const { return wb_joystick_get_pressed_button(); }
+    void setConstantForce(int level) { wb_joystick_set_constant_force(level); }
+    void setConstantForceDuration(double duration) {
+      wb_joystick_set_constant_force_duration(duration);
+    }
+    void setAutoCenteringGain(double gain) { wb_joystick_set_auto_centering_gain(gain); }
+    void setResistanceGain(double gain) { wb_joystick_set_resistance_gain(gain); }
+    void setForceAxis(int axis) { wb_joystick_set_force_axis(axis); }
   };
 
   class Keyboard {

@@ -79,6 +79,8 @@ namespace webots {
     Device *getDeviceByIndex(int index) { return device(wb_robot_get_device_by_index(index)); }
     Device *getDevice(const std::string &name) { return device(wb_robot_get_device(name.c_str())); }
     Keyboard *getKeyboard() { return &ownKeyboard; }
+    Mouse *getMouse() { return &ownMouse; }
+    Joystick *getJoystick() { return &ownJoystick; }
     Motor *getMotor(const std::string &name) { return dynamic_cast<Motor *>(getDevice(name)); }
     DistanceSensor *getDistanceSensor(const std::string &name) {
       return dynamic_cast<DistanceSensor *>(getDevice(name));
@@ -203,6 +205,8 @@ namespace webots {
     }
     std::map<WbDeviceTag, Device *> ownDevices;
     Keyboard ownKeyboard;
+    Mouse ownMouse;
+    Joystick ownJoystick;
   };
 }  // namespace webots
 

@@ -1,0 +1,3 @@
+// Webots' C++ Joystick class (<webots/Joystick.hpp>): defined with mazesim's other device
+// classes.
+#include <webots/Devices.hpp>

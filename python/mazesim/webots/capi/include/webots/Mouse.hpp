@@ -1,0 +1,3 @@
+// Webots' C++ Mouse class (<webots/Mouse.hpp>): defined with mazesim's other device
+// classes.
+#include <webots/Devices.hpp>
