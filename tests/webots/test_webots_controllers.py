@@ -243,6 +243,8 @@ def test_a_controllers_own_oserror_is_its_traceback(tmp_path: Path) -> None:
         ("import sys\nsys.exit('giving up')\n", 1),
         ("raise KeyboardInterrupt\n", 130),
         ("import sys\nsys.exit()\n", 0),
+        # Python ends with status 1: a number in the summary, not JSON's true.
+        ("import sys\nsys.exit(True)\n", 1),
         ("while True\n    pass\n", 1),
         # Deeper than Python's parser goes: the controller fails to compile, as under Webots;
         # the import scan before the run once let the RecursionError out as an internal error.
@@ -260,7 +262,7 @@ def test_exit_statuses_and_files_whatever_the_ending(
     result = webots_run(script, "--world", "arena", cwd=tmp_path)
     assert result.returncode == status, result.stderr
     summary, _ = outputs(tmp_path)
-    assert summary["exit_status"] == status
+    assert summary["exit_status"] == status and type(summary["exit_status"]) is int
     if "while True" in ending:
         assert summary["steps"] == 0, "a controller that does not compile does not run"
         assert f'File "{script}", line 5' in result.stderr and "SyntaxError" in result.stderr

@@ -215,10 +215,12 @@ def test_c_controllers_drive_every_robot_of_a_world_of_several(
     assert closest > 0.065, "bodies of about 7.4 cm across never pass through each other"
 
 
-def run_beside_an_avoider(tmp_path: Path, name: str, source: str) -> tuple[Any, Any]:
-    """The head-on world run for a second: the west robot on the C controller ``source`` (in
-    ``controllers/NAME/NAME.c``), the east one on the wall avoider; their runs."""
-    own = tmp_path / "controllers" / name / f"{name}.c"
+def run_beside_an_avoider(
+    tmp_path: Path, name: str, source: str, suffix: str = ".c"
+) -> tuple[Any, Any]:
+    """The head-on world run for a second: the west robot on the controller ``source`` (in
+    ``controllers/NAME/NAME.c``, or ``suffix``), the east one on the wall avoider; their runs."""
+    own = tmp_path / "controllers" / name / f"{name}{suffix}"
     own.parent.mkdir(parents=True)
     own.write_text(source)
     avoider = str(C_CONTROLLERS / "c_wall_avoider" / "c_wall_avoider.c")
@@ -710,3 +712,40 @@ def test_a_makefile_folder_with_a_fifo_or_a_folder_for_a_source_has_no_controlle
     os.mkfifo(folder / "Makefile")
     none, _ = controller_of({"name": "e", "controller": "explorer"}, world, {})
     assert none is None
+
+
+#: A controller whose threads call the API while its main thread steps.
+THREADED = """import threading
+from controller import Robot
+robot = Robot()
+sensor = robot.getDevice("ps0")
+sensor.enable(32)
+done = threading.Event()
+calls = []
+def ask():
+    while not done.is_set():
+        robot.getTime()
+        sensor.getValue()
+        calls.append(1)
+threads = [threading.Thread(target=ask) for _ in range(4)]
+for thread in threads:
+    thread.start()
+for _ in range(20):
+    robot.step(32)
+done.set()
+for thread in threads:
+    thread.join()
+print("threads done", len(calls) > 0, robot.getTime())
+"""
+
+
+def test_a_python_controller_s_threads_may_call_the_api_at_once_in_a_world_run(
+    tmp_path: Path, capfd: pytest.CaptureFixture[str]
+) -> None:
+    # Each call is a question on the controller's pipe to the world's process: unserialised,
+    # the threads read each other's answers (EOFError, UnpicklingError) and the run hung.
+    west, _ = run_beside_an_avoider(tmp_path, "threaded", THREADED, ".py")
+    assert (west.exit_status, west.error) == (0, "")
+    out, err = capfd.readouterr()
+    assert "threads done True 0.64" in out
+    assert "internal error" not in err

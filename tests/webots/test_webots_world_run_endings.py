@@ -151,3 +151,65 @@ def test_another_robot_s_quit_ends_a_controller_s_step_without_one_more_step(
     # with the end, as in Webots, not with a step in which no time passes.
     assert summary["steps"] == 10
     assert "counted 10 steps, at 0.320 s" in stdout, stdout
+
+
+#: A C controller that never steps: it runs until the run is stopped.
+NEVER_STEPPING_C = """#include <webots/robot.h>
+int main(void) {
+  wb_robot_init();
+  for (;;) {
+  }
+}
+"""
+
+
+def _running(program: Path) -> list[int]:
+    """The processes whose ``argv[0]`` is ``program`` (a built controller runs from the build
+    cache under the name Webots starts it by, its folder's)."""
+    found = []
+    for entry in Path("/proc").iterdir():
+        try:
+            if not entry.name.isdigit():
+                continue
+            command = (entry / "cmdline").read_bytes().split(b"\0")[0]
+            if command == os.fsencode(program) and (entry / "stat").read_text().split()[2] != "Z":
+                found.append(int(entry.name))
+        except OSError:
+            continue
+    return found
+
+
+@pytest.mark.skipif(not Path("/proc/self/exe").exists(), reason="reads /proc")
+def test_ctrl_c_ends_a_c_controller_that_never_steps_with_the_run(tmp_path: Path) -> None:
+    # Its own process, started by the robot's controller process, outlived the run at 100 % CPU
+    # (the controller process was killed, the program not), holding the terminal's output open.
+    world = _project(tmp_path, "", BUSY)
+    folder = tmp_path / "controllers" / "first"
+    for old in folder.iterdir():
+        old.unlink()
+    (folder / "first.c").write_text(NEVER_STEPPING_C)
+    program = folder / "first"
+    process = subprocess.Popen(
+        [sys.executable, "-m", "mazesim", "webots", "run", str(world), "--seconds", "600",
+         "--out", str(tmp_path / "out"), "--no-progress"],
+        cwd=tmp_path, env=dict(os.environ, READY_DIR=str(tmp_path)), stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE, text=True, start_new_session=True,
+    )  # fmt: skip
+    try:
+        deadline = time.monotonic() + 120
+        while not _running(program):
+            assert process.poll() is None and time.monotonic() < deadline, "it never started"
+            time.sleep(0.05)
+        os.killpg(process.pid, signal.SIGINT)
+        _, stderr = process.communicate(timeout=300)
+        assert process.returncode == 130, stderr
+        deadline = time.monotonic() + 10
+        while _running(program) and time.monotonic() < deadline:
+            time.sleep(0.05)
+        assert _running(program) == [], "the controller ran on after the run"
+    finally:
+        for pid in _running(program):
+            os.kill(pid, signal.SIGKILL)
+        if process.poll() is None:
+            os.killpg(process.pid, signal.SIGKILL)
+            process.communicate()

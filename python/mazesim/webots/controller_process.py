@@ -36,6 +36,7 @@ from __future__ import annotations
 
 import os
 import sys
+import threading
 from collections.abc import Sequence
 from dataclasses import asdict, dataclass
 from multiprocessing.connection import Connection
@@ -107,6 +108,10 @@ class ControllerSummary:
     wheel_commands: tuple[dict[str, float], ...] = ()
 
 
+#: Held while a question to the world's process waits for its answer.
+_ASKING = threading.RLock()
+
+
 class Remote:
     """A stand-in for an object of the world's process: attribute reads and method calls are
     forwarded over the pipe."""
@@ -117,8 +122,11 @@ class Remote:
         self._methods: dict[str, Any] = {}
 
     def _ask(self, message: tuple[Any, ...]) -> Any:
-        self._connection.send(message)
-        status, value = self._connection.recv()
+        # One question at a time on the pipe: a controller's threads that call the API at once
+        # would read each other's answers (Webots' C library serialises its calls alike).
+        with _ASKING:
+            self._connection.send(message)
+            status, value = self._connection.recv()
         if status == "error":
             raise value
         return value

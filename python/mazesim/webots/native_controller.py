@@ -690,6 +690,7 @@ def drive(
         env=environment,
         pass_fds=(theirs.fileno(),),
         stdin=subprocess.DEVNULL,
+        preexec_fn=_ends_with_its_parent,
     )
     theirs.close()
     link = native_link.RobotLink(ours, robot, facts)
@@ -727,6 +728,24 @@ def drive(
         name = _signal_name(status)
         return EXIT_CRASHED, f"the {language} controller crashed: killed by {name}\n", False
     return status, "", False
+
+
+#: Linux's ``prctl`` option that sends a process a signal when its parent ends.
+_PR_SET_PDEATHSIG = 1
+
+
+def _ends_with_its_parent() -> None:
+    """Run in the controller's process before it starts: it is killed when the process that
+    serves it ends, however that one ends (a world run's controller process killed at Ctrl-C),
+    so that a controller that never steps does not run on after mazesim, holding the terminal's
+    output open. Without Linux's ``prctl``, nothing."""
+    import ctypes
+
+    try:
+        libc = ctypes.CDLL(None, use_errno=True)
+        libc.prctl(_PR_SET_PDEATHSIG, signal.SIGKILL)
+    except (OSError, AttributeError):
+        pass
 
 
 def _serve(link: native_link.RobotLink, robot: Any) -> bool:

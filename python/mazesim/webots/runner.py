@@ -500,7 +500,8 @@ def _exit_status(request: SystemExit) -> tuple[int, str]:
     if code is None:
         return 0, ""
     if isinstance(code, int):
-        return code, ""
+        # sys.exit(True) ends Python with status 1: a number, not a bool, in the summary.
+        return int(code), ""
     return EXIT_CONTROLLER_ERROR, f"{code}\n"
 
 
