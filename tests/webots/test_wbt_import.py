@@ -260,8 +260,10 @@ def test_cli_json_layout(tmp_path: Path) -> None:
     }
     assert report["recognition"] == {"cameras": [], "objects": []}
     (robot,) = report["robots"]
-    assert set(robot) == {"pose", "model", "profile", "controller", "name", "def_name", "line"}
+    keys = {"pose", "model", "profile", "controller", "name", "def_name", "line", "y_up"}
+    assert set(robot) == keys
     assert robot["line"] == report["robot_line"]
+    assert robot["y_up"] is False, "an E-puck PROTO node of R2022a on stands Z-up"
     assert set(report["protos"]) == {"expanded", "stand_ins", "cache_hits", "downloads"}
     for obstacle in report["obstacles"]:
         if obstacle["kind"] == "box":

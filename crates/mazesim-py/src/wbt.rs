@@ -51,7 +51,8 @@ fn robot_and_floor(out: &Bound<'_, PyDict>, import: &WbtImport) -> PyResult<()> 
         d.set_item("controller", robot.controller.clone())?;
         d.set_item("name", robot.name.clone())?;
         d.set_item("def_name", robot.def_name.clone())?;
-        d.set_item("line", robot.line)
+        d.set_item("line", robot.line)?;
+        d.set_item("y_up", robot.y_up)
     })?;
     out.set_item("robots", robots)?;
     let devices = dicts(py, &import.extension_devices, |d, device| {

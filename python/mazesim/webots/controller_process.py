@@ -276,7 +276,7 @@ def controller_main(connection: Connection, job: ControllerJob) -> None:
     ``connection`` (the entry point of a controller process)."""
     from mazesim.webots.importer import import_wbt, import_wbt_text
     from mazesim.webots.runner import run_controller
-    from mazesim.webots.scene import read_scene, read_world_text
+    from mazesim.webots.scene import body_y_up, read_scene, read_world_text
 
     text = job.world_text
     if text is None:
@@ -286,7 +286,9 @@ def controller_main(connection: Connection, job: ControllerJob) -> None:
         world, imported = import_wbt_text(text, job.world_path, robot_line=job.robot_line)
     report: dict[str, Any] = dict(imported)
     report["path"] = os.path.abspath(job.world_path)
-    scene = read_scene(text, report.get("robot_model"), report.get("robot_line"))
+    line = report.get("robot_line")
+    y_up = body_y_up(report.get("robots") or [], line)
+    scene = read_scene(text, report.get("robot_model"), line, y_up)
     summary = ControllerSummary(1, "", False, False, False, 0)
     try:
         run = run_controller(

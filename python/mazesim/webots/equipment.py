@@ -293,7 +293,12 @@ def _bumper(simulation: RobotSimulation, name: str) -> list[Footprint]:
     if text is None:
         return []
     return bounding_footprints(
-        text, report.get("robot_line"), "TouchSensor", name, simulation.scene.nue, "touch sensor"
+        text,
+        report.get("robot_line"),
+        "TouchSensor",
+        name,
+        simulation.scene.body_y_up,
+        "touch sensor",
     )
 
 

@@ -145,7 +145,9 @@ class WorldRobot(TypedDict):
     """A robot of the world file, as listed in the report's ``robots``: its start ``pose``,
     ``model``, the ``profile`` that simulates it (``None`` for a robot that is not an e-puck:
     its controller runs, its body does not move), its ``controller``, ``name`` and ``def_name``
-    fields and the ``line`` of its node."""
+    fields, the ``line`` of its node and whether its body is modelled Y-up (``y_up``: forward
+    along its node's local -z, up its local y, as every robot of a file before R2022a, and a
+    body built so and stood upright by its ``rotation`` in a later file)."""
 
     pose: list[float]
     model: str
@@ -154,6 +156,7 @@ class WorldRobot(TypedDict):
     name: str | None
     def_name: str | None
     line: int
+    y_up: bool
 
 
 class ImportReport(TypedDict):

@@ -802,7 +802,8 @@ def run_world(
         run.imported_s = imported_s
         robot, text = robots[index], fleet.text or ""  # the world as the import changed it
         if not restart:
-            traction.join(index, robot, read_scene(text, robot.get("model"), robot["line"]))
+            scene = read_scene(text, robot.get("model"), robot["line"], robot.get("y_up"))
+            traction.join(index, robot, scene)
         if job is None:
             return run, None
         _, _, ready = _say_what_is_missing([run])
@@ -933,7 +934,9 @@ def _robot_scenes(world_path: str, robots: list[Mapping[str, Any]]) -> list[Scen
     """What the world file says of each robot's node (:func:`~mazesim.webots.scene.read_scenes`
     of the node on its line)."""
     return read_scenes(
-        read_world_text(world_path), [(robot.get("model"), robot.get("line")) for robot in robots]
+        read_world_text(world_path),
+        [(robot.get("model"), robot.get("line")) for robot in robots],
+        [robot.get("y_up") for robot in robots],
     )
 
 

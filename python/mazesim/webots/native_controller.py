@@ -25,7 +25,7 @@ import tempfile
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Any, Callable
 
 from mazesim._atomic import atomic_file
 from mazesim._paths import MAX_TEXT_CHARACTERS, read_input
@@ -690,7 +690,7 @@ def drive(
         env=environment,
         pass_fds=(theirs.fileno(),),
         stdin=subprocess.DEVNULL,
-        preexec_fn=_ends_with_its_parent,
+        preexec_fn=_ends_with_its_parent(),
     )
     theirs.close()
     link = native_link.RobotLink(ours, robot, facts)
@@ -734,18 +734,27 @@ def drive(
 _PR_SET_PDEATHSIG = 1
 
 
-def _ends_with_its_parent() -> None:
-    """Run in the controller's process before it starts: it is killed when the process that
-    serves it ends, however that one ends (a world run's controller process killed at Ctrl-C),
-    so that a controller that never steps does not run on after mazesim, holding the terminal's
-    output open. Without Linux's ``prctl``, nothing."""
+def _ends_with_its_parent() -> Callable[[], None] | None:
+    """What the controller's process runs before it starts, so that it is killed when the
+    process that serves it ends, however that one ends (a world run's controller process killed
+    at Ctrl-C): a controller that never steps does not run on after mazesim, holding the
+    terminal's output open. Without Linux's ``prctl``, None.
+
+    Linux's ``prctl`` is looked up here, in the serving process: after the fork, with other
+    threads about, the child only calls it (no import, no library loading)."""
     import ctypes
 
     try:
-        libc = ctypes.CDLL(None, use_errno=True)
-        libc.prctl(_PR_SET_PDEATHSIG, signal.SIGKILL)
+        prctl = ctypes.CDLL(None, use_errno=True).prctl
     except (OSError, AttributeError):
-        pass
+        return None
+    prctl.argtypes = [ctypes.c_int, ctypes.c_ulong]
+    death_signal = int(signal.SIGKILL)
+
+    def in_the_child() -> None:
+        prctl(_PR_SET_PDEATHSIG, death_signal)
+
+    return in_the_child
 
 
 def _serve(link: native_link.RobotLink, robot: Any) -> bool:

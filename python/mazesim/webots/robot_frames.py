@@ -364,14 +364,15 @@ _ROUND_RADIUS = 1.0
 
 
 def bounding_footprints(
-    text: str, robot_line: int | None, kind: str, name: str, nue: bool, default_name: str = ""
+    text: str, robot_line: int | None, kind: str, name: str, y_up: bool, default_name: str = ""
 ) -> list[Footprint]:
     """The ``boundingObject`` of the device node of type ``kind`` named ``name`` that the
     robot node on ``robot_line`` of a world's ``text`` holds (among its children or in its
     slots), seen from above in the device's frame: each Box, Cylinder, Capsule and Sphere,
     placed by the Pose, Transform and Group nodes around it (a turn about the vertical kept,
     a tilt left out). Empty when the file writes no such node (a device a PROTO holds) or the
-    node has no boundingObject. A node without a ``name`` field is named ``default_name``."""
+    node has no boundingObject. A node without a ``name`` field is named ``default_name``;
+    ``y_up``: the robot's inside is modelled Y-up (``Scene.body_y_up``)."""
     if robot_line is None:
         return []
     tree = parse_nodes(text.lstrip("\ufeff"), "<world>", max_depth=None)
@@ -392,11 +393,11 @@ def bounding_footprints(
         bounding = node.field("boundingObject")
         if bounding is None or not bounding.nodes:
             return []
-        return _footprints(bounding.nodes[0], defined, nue)
+        return _footprints(bounding.nodes[0], defined, y_up)
     return []
 
 
-def _footprints(top: Any, defined: dict[int, Any], nue: bool) -> list[Footprint]:
+def _footprints(top: Any, defined: dict[int, Any], y_up: bool) -> list[Footprint]:
     """The footprints of a boundingObject's node (:func:`bounding_footprints`)."""
     found: list[Footprint] = []
     pending = [(top, 0.0, 0.0, 0.0, 0)]
@@ -413,7 +414,7 @@ def _footprints(top: Any, defined: dict[int, Any], nue: bool) -> list[Footprint]
             pending.extend((n, x, y, yaw, depth + 1) for n in (geometry.nodes if geometry else []))
         elif kind == "Box":
             size = _numbers(node, "size", 3) or _BOX_SIZE
-            sx, sy = (size[2], size[0]) if nue else (size[0], size[1])
+            sx, sy = (size[2], size[0]) if y_up else (size[0], size[1])
             found.append(Footprint(x, y, yaw, (abs(sx) / 2.0, abs(sy) / 2.0), 0.0))
         elif kind in ("Cylinder", "Capsule", "Sphere"):
             radius = (_numbers(node, "radius", 1) or (_ROUND_RADIUS,))[0]
@@ -421,9 +422,9 @@ def _footprints(top: Any, defined: dict[int, Any], nue: bool) -> list[Footprint]
         elif kind in ("Pose", "Transform", "Group"):
             dx, dy, turn = 0.0, 0.0, 0.0
             if (at := _numbers(node, "translation", 3)) is not None:
-                dx, dy, _ = nue_to_enu(*at) if nue else at
+                dx, dy, _ = nue_to_enu(*at) if y_up else at
             if (rotation := _numbers(node, "rotation", 4)) is not None:
-                axis = nue_to_enu(*rotation[:3]) if nue else rotation[:3]
+                axis = nue_to_enu(*rotation[:3]) if y_up else rotation[:3]
                 length = math.sqrt(sum(v * v for v in axis)) or 1.0
                 if abs(abs(axis[2]) / length - 1.0) <= UPRIGHT:
                     turn = math.copysign(rotation[3], axis[2])

@@ -12,8 +12,9 @@ import io
 import math
 import os
 import re
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
+from typing import Any
 
 from mazesim._paths import open_input
 from mazesim.webots.devices import device_side
@@ -44,6 +45,7 @@ __all__ = [
     "Row",
     "Scene",
     "SceneNode",
+    "body_y_up",
     "read_scene",
     "read_scenes",
     "read_world_text",
@@ -201,6 +203,11 @@ class Scene:
         y_up_devices: Whether the robot's PROTOs are Webots' Y-up ones (a file before
             R2022a): an accelerometer, gyro or compass then reads in the device frame x
             right, y up, z back.
+        body_y_up: Whether the robot's inside is modelled Y-up (forward its node's local -z,
+            up its local y): every robot of a file before R2022a, and one built so and stood
+            upright by its ``rotation`` in a later file, as the import decides robot by robot
+            (its report's ``y_up``); the positions of the devices its node writes are turned
+            to the robot's Z-up frame.
         sensor_tables: The ``lookupTable`` of each ``DistanceSensor`` node the robot's node
             lists itself (a plain ``Robot`` or ``DifferentialWheels`` e-puck saved expanded, not
             an E-puck PROTO node), by its ``name``: rows of distance (m), value and relative
@@ -245,6 +252,7 @@ class Scene:
     north: tuple[float, float] | None = None
     nue: bool = False
     y_up_devices: bool = False
+    body_y_up: bool = False
     wheel_positions: tuple[float, float] = (0.0, 0.0)
     wheels_node: WheelsNode | None = None
     traction_version: str | None = None
@@ -280,7 +288,12 @@ def read_world_text(path: str | os.PathLike[str]) -> str:
         return unix_line_ends(handle.read())
 
 
-def read_scene(text: str, robot_model: str | None = None, robot_line: int | None = None) -> Scene:
+def read_scene(
+    text: str,
+    robot_model: str | None = None,
+    robot_line: int | None = None,
+    y_up: bool | None = None,
+) -> Scene:
     """Reads the scene facts of a world file's text.
 
     The robot's own facts (DEF and ``name``, ``customData``, ``supervisor``,
@@ -292,16 +305,24 @@ def read_scene(text: str, robot_model: str | None = None, robot_line: int | None
         robot_model: The robot's node type from the import report, if any.
         robot_line: The line of the robot's node from the import report (``robot_line``), if
             any; without it the first robot node of the file is the robot.
+        y_up: Whether the robot's body is modelled Y-up, as the import report's robot says
+            (its ``y_up``: :func:`body_y_up`); None takes the file's convention (Y-up before
+            R2022a).
 
     Raises:
         WorldFormatError: The text is not a world's nodes (the import says so first).
     """
-    return read_scenes(text, [(robot_model, robot_line)])[0]
+    return read_scenes(text, [(robot_model, robot_line)], [y_up])[0]
 
 
-def read_scenes(text: str, robots: Sequence[tuple[str | None, int | None]]) -> list[Scene]:
+def read_scenes(
+    text: str,
+    robots: Sequence[tuple[str | None, int | None]],
+    y_up: Sequence[bool | None] = (),
+) -> list[Scene]:
     """The scene facts of a world file's text for each of its robots (its node type and line,
-    as :func:`read_scene` takes them), the text parsed once.
+    as :func:`read_scene` takes them, and whether its body is modelled Y-up, ``y_up`` in the
+    same order, None or left out for the file's convention), the text parsed once.
 
     Raises:
         WorldFormatError: The text is not a world's nodes (the import says so first).
@@ -309,16 +330,35 @@ def read_scenes(text: str, robots: Sequence[tuple[str | None, int | None]]) -> l
     text = text.lstrip("\ufeff")
     tree = parse_nodes(text, "<world>", max_depth=None)
     every = list(nodes_in_order(tree))
-    return [_scene(text, tree, every, model, line) for model, line in robots]
+    bodies = [*y_up, *[None] * (len(robots) - len(y_up))]
+    return [
+        _scene(text, tree, every, model, line, body) for (model, line), body in zip(robots, bodies)
+    ]
+
+
+def body_y_up(robots: Sequence[Mapping[str, Any]], line: int | None) -> bool | None:
+    """Whether the body of the robot of the import report's ``robots`` whose node is on
+    ``line`` is modelled Y-up (its ``y_up``), or None when no robot of the list is there."""
+    for robot in robots:
+        if line is not None and robot.get("line") == line and "y_up" in robot:
+            return bool(robot["y_up"])
+    return None
 
 
 def _scene(
-    text: str, tree: list[Node], every: list[Node], robot_model: str | None, robot_line: int | None
+    text: str,
+    tree: list[Node],
+    every: list[Node],
+    robot_model: str | None,
+    robot_line: int | None,
+    y_up: bool | None,
 ) -> Scene:
-    """The scene facts of a parsed world (``tree``, ``every`` node in file order) for a robot."""
+    """The scene facts of a parsed world (``tree``, ``every`` node in file order) for a robot
+    (``y_up``: whether its body is modelled Y-up, None for the file's convention)."""
     scene = Scene()
     version, scene.nue = world_version(text)
     scene.y_up_devices = scene.nue
+    scene.body_y_up = scene.y_up_devices if y_up is None else y_up
     year = version[1:5] if version is not None and version.startswith("R") else None
     scene.nue = scene.nue or first_value(every, "coordinateSystem", Field.string) == "NUE"
     robot_types = ROBOT_TYPES | ({robot_model} if robot_model else set())
@@ -350,7 +390,7 @@ def _scene(
             scene.ground_sensors_module = any(n.type_name in _GROUND_SENSORS for n in inside)
         else:
             scene.sensor_tables, scene.malformed_tables = _sensor_tables(text, inside)
-            placed = _sensor_poses(robot, scene.nue)
+            placed = _sensor_poses(robot, scene.body_y_up)
             scene.sensor_poses = {name: pose[:4] for name, pose in placed.items()}
             scene.sensor_heights = {name: pose[4] for name, pose in placed.items()}
             scene.sensor_types = _sensor_types(inside)
@@ -512,11 +552,12 @@ def _rows_of_three(table: Field) -> list[Row] | None:
     return [(numbers[i], numbers[i + 1], numbers[i + 2]) for i in range(0, len(numbers), 3)]
 
 
-def _sensor_poses(robot: Node, nue: bool) -> dict[str, tuple[float, float, float, float, float]]:
+def _sensor_poses(robot: Node, y_up: bool) -> dict[str, tuple[float, float, float, float, float]]:
     """The pose in the robot's frame (x, y, heading, rise, height) of each named
     ``DistanceSensor`` node that is a child of the robot node or of the grouping nodes
     (:data:`GROUPING_TYPES`: an E-puck saved expanded holds each in a Solid) under it, composed
-    through their ``translation`` and ``rotation``."""
+    through their ``translation`` and ``rotation``; a body modelled Y-up (``y_up``) is turned
+    to the robot's Z-up frame."""
     poses: dict[str, tuple[float, float, float, float, float]] = {}
     # The nodes still to visit, each with the frame of the node that holds it.
     pending = [(node, WORLD_FRAME) for item in robot.fields for node in item.nodes]
@@ -535,7 +576,7 @@ def _sensor_poses(robot: Node, nue: bool) -> dict[str, tuple[float, float, float
             continue
         x, y, z = origin
         ray = (axes[0], axes[3], axes[6])
-        if nue:
+        if y_up:
             (x, y, z), ray = nue_to_enu(x, y, z), nue_to_enu(*ray)
         rise = math.asin(max(-1.0, min(1.0, ray[2])))
         poses[name] = (x, y, math.atan2(ray[1], ray[0]), rise, z)

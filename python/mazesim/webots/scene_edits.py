@@ -31,7 +31,7 @@ from mazesim.errors import MazesimError
 from mazesim.webots.frames import Frame, axis_angle, enu_to_nue, enu_to_nue_matrix
 from mazesim.webots.proto.syntax import unix_line_ends
 from mazesim.webots.robots_changed import kept_robots
-from mazesim.webots.scene import SceneNode, read_scene, read_world_text
+from mazesim.webots.scene import SceneNode, body_y_up, read_scene, read_world_text
 from mazesim.webots.solids import carried_over, held_by_line
 
 __all__ = ["Change", "SceneEdits", "scene_edits"]
@@ -234,7 +234,8 @@ class SceneEdits:
                 print(f"mazesim: warning: {warning}", file=sys.stderr)
         added: list[SceneNode] = []
         if first is not None:
-            scene = read_scene(text, report.get("robot_model"), robot_line)
+            y_up = body_y_up(report.get("robots") or [], robot_line)
+            scene = read_scene(text, report.get("robot_model"), robot_line, y_up)
             added = [node for node in scene.nodes if node.line >= first]
             if wrapped:
                 added = [node for pose in added for node in pose.children]

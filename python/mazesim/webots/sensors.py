@@ -127,9 +127,18 @@ class _TableVector(_Tabled, _VectorSensor):
             measured = tuple(sum(a * v for a, v in zip(axis, robot)) for axis in tilted)
         else:
             measured = self._measure()
-            if self._device_frame and self._simulation.scene.y_up_devices:
+            if self._device_frame and self._y_up_frame():
                 measured = enu_to_nue(*measured)
         return [self._table(v, self._rng) for v in measured]
+
+    def _y_up_frame(self) -> bool:
+        """Whether the device, level on the robot, reads in a Y-up frame (x right, y up, z
+        back): one of the e-puck's own (placed by no axes of the import) in a body modelled
+        Y-up (``Scene.body_y_up``: a robot saved expanded from a file before R2022a, stood
+        upright in a later one too); one the world places, in a Y-up PROTO (a file before
+        R2022a). In a later file, the import's axes of a device in a Y-up body tilt it."""
+        scene = self._simulation.scene
+        return scene.body_y_up if self._mount.axes is None else scene.y_up_devices
 
     def _measure(self) -> tuple[float, float, float]:
         raise NotImplementedError

@@ -159,7 +159,8 @@ def carrying_imported(
     seen_from = next((r for r in robots if int(r["line"]) in running), None)
     model = None if seen_from is None else seen_from.get("model")
     line = min(running) if seen_from is None else int(seen_from["line"])
-    scene = read_scenes(text, [(None if model is None else str(model), line)])[0]
+    y_up = None if seen_from is None else seen_from.get("y_up")
+    scene = read_scenes(text, [(None if model is None else str(model), line)], [y_up])[0]
     placed: list[Mapping[str, Any]] = []
     for robot in robots:
         carried = []

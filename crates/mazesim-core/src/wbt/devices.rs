@@ -469,8 +469,15 @@ impl<'d> Importer<'d> {
             .first()
             .cloned()
             .unwrap_or_else(|| default_name.to_string());
-        // Files before R2022a write the robot's inside Y-up: turn it to the robot's Z-up frame.
-        let to_z_up = |v| if self.y_up { apply(&NUE_TO_ENU, v) } else { v };
+        // A robot whose inside is Y-up (every robot of a file before R2022a, some after): turn
+        // it to the robot's Z-up frame.
+        let to_z_up = |v| {
+            if self.body_y_up {
+                apply(&NUE_TO_ENU, v)
+            } else {
+                v
+            }
+        };
         let origin = to_z_up(frame.origin);
         let x_axis = to_z_up(frame.axis(0));
         let axes = [0, 1, 2].map(|i| {

@@ -113,6 +113,8 @@ pub struct FoundRobot {
     pub profile: &'static str,
     /// The line of its node type in the file.
     pub line: usize,
+    /// Its body is modelled Y-up (see [`WorldRobot::y_up`]).
+    pub y_up: bool,
 }
 
 /// Heaviest object with physics imported as a movable body, kilograms: ten times the e-puck's
@@ -135,6 +137,9 @@ pub struct Importer<'d> {
     pub doc: &'d Document,
     /// PROTOs and primitives are Y-up (files before R2022a).
     pub y_up: bool,
+    /// The inside of the robot whose devices are being listed is modelled Y-up (see
+    /// [`WorldRobot::y_up`]): its devices' frames are turned to the robot's Z-up frame.
+    pub body_y_up: bool,
     pub obstacles: Vec<Obstacle>,
     /// How each of `obstacles` looks (see `appearance.rs`).
     pub obstacle_looks: Vec<Look>,
@@ -229,6 +234,7 @@ fn walk<'d>(
     let mut importer = Importer {
         doc,
         y_up: !doc.version.has_z_up_protos(),
+        body_y_up: !doc.version.has_z_up_protos(),
         obstacles: Vec::new(),
         obstacle_looks: Vec::new(),
         look: Look::UNREAD,
@@ -799,7 +805,7 @@ impl<'d> Importer<'d> {
             (_, false) if plain => ("E-puck".to_string(), "e-puck"),
             (kind, false) => (kind.to_string(), "e-puck"),
         };
-        let Some(pose) = self.robot_pose(node, frame) else {
+        let Some((pose, y_up)) = self.robot_pose(node, frame) else {
             return;
         };
         let found = FoundRobot {
@@ -807,6 +813,7 @@ impl<'d> Importer<'d> {
             model,
             profile,
             line: node.line,
+            y_up,
         };
         self.list_robot(node, &found, Some(profile), (Vec::new(), Vec::new()));
         // A node that leaves `controller` out runs its PROTO's default (the E-puck PROTO's
@@ -841,6 +848,7 @@ impl<'d> Importer<'d> {
             ));
             return;
         }
+        self.body_y_up = found.y_up;
         self.robot = Some(found);
         self.robot_at = Some(self.pose_at);
         self.extension_slots(node);
@@ -866,6 +874,7 @@ impl<'d> Importer<'d> {
             name: self.strings(node, "name").first().cloned(),
             def_name: node.def_name.clone(),
             line: node.line,
+            y_up: found.y_up,
         };
         self.robots.push((robot, shapes.0, shapes.1));
     }
@@ -875,7 +884,7 @@ impl<'d> Importer<'d> {
     /// node) are static obstacles.
     fn other_robot(&mut self, node: &'d Node, frame: &Frame) {
         let label = self.label(node);
-        let Some(pose) = self.robot_pose(node, frame) else {
+        let Some((pose, y_up)) = self.robot_pose(node, frame) else {
             return;
         };
         let found = FoundRobot {
@@ -883,6 +892,7 @@ impl<'d> Importer<'d> {
             model: node.type_name.clone(),
             profile: STAND_IN_PROFILE,
             line: node.line,
+            y_up,
         };
         let shapes = self.robot_shapes(node, frame, &label);
         let shaped = !shapes.0.is_empty();
@@ -891,6 +901,7 @@ impl<'d> Importer<'d> {
         if self.chosen.is_some_and(|chosen| std::ptr::eq(chosen, node)) {
             // The robot of the run: its controller runs on a robot that stays where it is.
             self.warn(not_an_epuck(&label, kind, NotAnEpuck::Chosen));
+            self.body_y_up = found.y_up;
             self.robot = Some(found);
             self.robot_children(node, false);
             return;
@@ -948,11 +959,19 @@ impl<'d> Importer<'d> {
         (shapes.into_iter().zip(looks).collect(), owners)
     }
 
-    /// A robot's start pose: its origin and where its forward axis points.
-    fn robot_pose(&mut self, node: &'d Node, frame: &Frame) -> Option<[f64; 3]> {
+    /// A robot's start pose (its origin and where its forward axis points), and whether its
+    /// body is modelled Y-up ([`Importer::robot_y_up`]).
+    fn robot_pose(&mut self, node: &'d Node, frame: &Frame) -> Option<([f64; 3], bool)> {
         let label = self.label(node);
         let local = self.local_frame(node, [0.0; 3]);
-        let body = self.z_up(&frame.then(&local));
+        let placed = frame.then(&local);
+        let y_up = self.robot_y_up(&placed);
+        // A Y-up body's forward is its local -z, its up its local y: turned as a Y-up file's.
+        let body = if y_up {
+            placed.then(&Frame::rotation(ENU_TO_NUE))
+        } else {
+            placed
+        };
         let up = body.vector([0.0, 0.0, 1.0]);
         if tilt(up) > TILT_TOLERANCE {
             self.warn(format!(
@@ -977,7 +996,24 @@ impl<'d> Importer<'d> {
             ));
             return None;
         }
-        Some([snap(x), snap(y), snap(yaw)])
+        Some(([snap(x), snap(y), snap(yaw)], y_up))
+    }
+
+    /// Whether a robot node placed at `placed` (its own frame in the world's Z-up frame) has a
+    /// body modelled Y-up, decided robot by robot from where its node's axes point: Y-up when
+    /// its local y points up (as every robot of a file before R2022a, and a body built so and
+    /// stood upright by its `rotation` in a later file: a world Webots converted to R2022a, or
+    /// a project's own PROTO such as RoboCup Junior's e-puck-based robots), Z-up when its local
+    /// z does; a robot tilted so that neither does takes the file's convention.
+    fn robot_y_up(&self, placed: &Frame) -> bool {
+        let upright = |v: Vec3| v[2] > 0.0 && tilt(v) <= TILT_TOLERANCE;
+        if upright(placed.vector([0.0, 1.0, 0.0])) {
+            true
+        } else if upright(placed.vector([0.0, 0.0, 1.0])) {
+            false
+        } else {
+            self.y_up
+        }
     }
 }
 

@@ -133,6 +133,10 @@ pub struct WorldRobot {
     pub def_name: Option<String>,
     /// The line of its node type in the file.
     pub line: usize,
+    /// Its body is modelled Y-up: forward along its node's local -z, up its local y, left its
+    /// local -x, as every robot of a file before R2022a and a body built so and stood upright
+    /// by its `rotation` in a later file; its start pose and its devices' frames are read so.
+    pub y_up: bool,
 }
 
 /// What a `.wbt` world holds for mazesim.

@@ -76,6 +76,65 @@ fn new_files_saying_nue_are_turned_as_a_whole() {
 }
 
 #[test]
+fn a_body_built_y_up_and_stood_upright_in_a_z_up_file_is_read_as_y_up() {
+    // Forward along its local -z, up its local y, wheels' axes along x (RoboCup Junior's
+    // e-puck-based PROTOs): its rotation stands it up, so it faces +y, its GPS 1.85 cm up.
+    let text = "#VRML_SIM R2023b utf8\n\
+        Robot { rotation 1 0 0 1.5708 children [\n\
+          GPS { translation 0 0.0185 0 }\n\
+          DistanceSensor { translation 0 0.03 -0.035 rotation 0 1 0 1.5708 name \"front\" }\n\
+          HingeJoint { jointParameters HingeJointParameters { axis -1 0 0 }\n\
+            device [ RotationalMotor { name \"left wheel motor\" } ] }\n\
+          HingeJoint { jointParameters HingeJointParameters { axis -1 0 0 }\n\
+            device [ RotationalMotor { name \"right wheel motor\" } ] }\n\
+        ] controller \"drive\" }\n\
+        Robot { translation 0.5 0 0 name \"level\" controller \"other\" }\n";
+    let w = import(text);
+    assert_eq!(w.robot_model.as_deref(), Some("E-puck"), "{:?}", w.warnings);
+    let [x, y, heading] = w.robot.unwrap();
+    assert!(close(x, 0.0) && close(y, 0.0), "{x} {y}");
+    assert!((heading - FRAC_PI_2).abs() < 1e-4, "{heading}");
+    assert!(!warned(&w, "tilted"), "{:?}", w.warnings);
+    let flags: Vec<bool> = w.robots.iter().map(|r| r.y_up).collect();
+    assert_eq!(flags, [true, false]);
+    let at = |name: &str| {
+        let device = w.extension_devices.iter().find(|d| d.name == name);
+        device.unwrap_or_else(|| panic!("no {name}: {:?}", w.extension_devices))
+    };
+    let [gx, gy, gz] = at("gps").translation;
+    assert!(
+        close(gx, 0.0) && close(gy, 0.0) && (gz - 0.0185).abs() < 1e-9,
+        "{gx} {gy} {gz}"
+    );
+    let front = at("front");
+    let [fx, fy, fz] = front.translation;
+    assert!((fx - 0.035).abs() < 1e-9 && close(fy, 0.0) && (fz - 0.03).abs() < 1e-9);
+    assert!(
+        front.yaw.abs() < 1e-4 && front.pitch.abs() < 1e-4,
+        "{}",
+        front.yaw
+    );
+    // Its Z-up twin, and every robot of a file before R2022a, read alike.
+    let z_up = text
+        .replace("rotation 1 0 0 1.5708 ", "")
+        .replace("translation 0 0.0185 0", "translation 0 0 0.0185");
+    let twin = import(&z_up);
+    assert!(!twin.robots[0].y_up);
+    assert!(close(twin.robot.unwrap()[2], 0.0));
+    let old = import(
+        &text
+            .replace("R2023b", "R2021a")
+            .replace("rotation 1 0 0 1.5708 ", ""),
+    );
+    assert_eq!(
+        old.robots.iter().map(|r| r.y_up).collect::<Vec<_>>(),
+        [true, true]
+    );
+    // Facing the file's -z: mazesim's +x.
+    assert!(old.robot.unwrap()[2].abs() < 1e-4, "{:?}", old.robot);
+}
+
+#[test]
 fn shapes_nest_scale_and_reuse() {
     let w = import(
         "#VRML_SIM R2023b utf8\n\
