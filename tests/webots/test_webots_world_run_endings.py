@@ -213,3 +213,161 @@ def test_ctrl_c_ends_a_c_controller_that_never_steps_with_the_run(tmp_path: Path
         if process.poll() is None:
             os.killpg(process.pid, signal.SIGKILL)
             process.communicate()
+
+
+#: A controller that steps while the other robot's controller counts its steps, then ends as
+#: ENDING says (a line of Python).
+ENDING_AFTER_A_STEP = """
+import os
+import signal
+import sys
+
+from controller import Robot
+
+robot = Robot()
+robot.step(32)
+ENDING
+"""
+
+
+def _run_ending(
+    tmp_path: Path, capfd: pytest.CaptureFixture[str], ending: str
+) -> tuple[int, str, dict[str, object]]:
+    """Runs :data:`WORLD` with the first robot ending as ``ending`` says; the command's status,
+    its stderr and the summary of the first robot (the second's is checked here)."""
+    world = _project(tmp_path, ENDING_AFTER_A_STEP.replace("ENDING", ending), COUNTING)
+    out = tmp_path / "out"
+    status = main(["webots", "run", str(world), "--seconds", "0.5", "--out", str(out)])
+    captured = capfd.readouterr()
+    assert "Traceback" not in captured.err, captured.err
+    # The other robot's run is whole, and so are the outputs.
+    assert "counted 16 steps, at 0.512 s" in captured.out, captured.out
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["exit_status"] == status
+    assert summary["robots"][1]["exit_status"] == 0
+    assert summary["robots"][1]["controller_error"] is None
+    assert "  second           second.py:" in captured.out
+    rows = (out / "trajectory.csv").read_text().splitlines()
+    assert len(rows) == 1 + 2 * (summary["steps"] + 1)
+    return status, captured.err, summary["robots"][0]
+
+
+def _robot_lines(stderr: str) -> list[str]:
+    return [line for line in stderr.splitlines() if line.startswith("mazesim: robot 'first'")]
+
+
+@pytest.mark.parametrize(
+    ("ending", "error"),
+    [
+        (
+            "os.kill(os.getpid(), signal.SIGSEGV)",
+            "the Python controller crashed: killed by SIGSEGV",
+        ),
+        (
+            "os.kill(os.getpid(), signal.SIGKILL)",
+            "the Python controller crashed: killed by SIGKILL",
+        ),
+    ],
+)
+def test_a_python_controller_killed_by_a_signal_is_reported_as_a_c_one(
+    tmp_path: Path, capfd: pytest.CaptureFixture[str], ending: str, error: str
+) -> None:
+    status, stderr, first = _run_ending(tmp_path, capfd, ending)
+    assert status == 1
+    assert _robot_lines(stderr) == [f"mazesim: robot 'first': {error}"]
+    assert first["exit_status"] == 1
+    assert first["controller_error"] == error
+
+
+def test_a_python_controller_s_os_exit_is_reported_with_its_status(
+    tmp_path: Path, capfd: pytest.CaptureFixture[str]
+) -> None:
+    status, stderr, first = _run_ending(tmp_path, capfd, "os._exit(3)")
+    assert status == 3
+    error = (
+        "the Python controller's process exited with status 3 without its report (as os._exit "
+        "ends a process; sys.exit or a return sends it)"
+    )
+    assert _robot_lines(stderr) == [f"mazesim: robot 'first': {error}"]
+    assert first["exit_status"] == 3
+    assert first["controller_error"] == error
+
+
+def test_an_os_exit_0_is_a_quiet_end(tmp_path: Path, capfd: pytest.CaptureFixture[str]) -> None:
+    status, stderr, first = _run_ending(tmp_path, capfd, "sys.stdout.flush(); os._exit(0)")
+    assert status == 0
+    assert _robot_lines(stderr) == []
+    assert first["exit_status"] == 0 and first["controller_error"] is None
+
+
+@pytest.mark.parametrize("code", [2**40, 2**40 + 3, -1, 2**70])
+def test_a_huge_sys_exit_status_is_the_one_the_process_would_have(
+    tmp_path: Path, capfd: pytest.CaptureFixture[str], code: int
+) -> None:
+    real = subprocess.run([sys.executable, "-c", f"raise SystemExit({code})"]).returncode
+    status, stderr, first = _run_ending(tmp_path, capfd, f"raise SystemExit({code})")
+    assert first["exit_status"] == real
+    assert status == real, "the command's status is its robot's"
+    assert _robot_lines(stderr) == []
+
+
+def test_a_controller_that_closes_its_standard_streams_still_reports(
+    tmp_path: Path, capfd: pytest.CaptureFixture[str]
+) -> None:
+    ending = "sys.stdout.close()\nsys.stderr.close()\nrobot.step(32)"
+    status, stderr, first = _run_ending(tmp_path, capfd, ending)
+    assert status == 0
+    assert _robot_lines(stderr) == []
+    assert first["exit_status"] == 0 and first["controller_error"] is None
+
+
+def test_a_run_of_one_controller_that_closes_its_streams_prints_its_summary(
+    tmp_path: Path,
+) -> None:
+    ending = "sys.stdout.close()\nsys.stderr.close()\nrobot.step(32)"
+    world = _project(tmp_path, ENDING_AFTER_A_STEP.replace("ENDING", ending), BUSY)
+    controller = world.parent.parent / "controllers" / "first" / "first.py"
+    done = subprocess.run(
+        [sys.executable, "-m", "mazesim", "webots", "run", str(controller), "--seconds", "0.5",
+         "--out", str(tmp_path / "out"), "--no-progress"],
+        cwd=tmp_path, capture_output=True, text=True, timeout=300,
+    )  # fmt: skip
+    assert done.returncode == 0, done.stderr
+    assert done.stderr == "", done.stderr
+    assert "controller         first.py (the controller returned)" in done.stdout
+    assert "wrote " in done.stdout
+    assert json.loads((tmp_path / "out" / "summary.json").read_text())["exit_status"] == 0
+
+
+@pytest.mark.parametrize(
+    ("ending", "error"),
+    [
+        (
+            "os.closerange(3, 256)\nrobot.step(32)",
+            "the controller's link to the world's process was lost: the controller closed its "
+            "file descriptor (os.close or os.closerange): close only the files it opened",
+        ),
+        (
+            # Both processes step; the controller's waits for the other, then steps on.
+            "pid = os.fork()\nrobot.step(32)\nos.waitpid(pid, 0) if pid else None\nrobot.step(32)",
+            "a process the controller forked (pid PID) called Robot.step: only the controller's "
+            "own process is linked to the world's process, so that process was stopped; call "
+            "the API from the controller's process (a thread, or a forked process that only "
+            "computes)",
+        ),
+    ],
+    ids=["closerange", "fork"],
+)
+def test_a_controller_that_breaks_its_link_is_reported_in_one_line(
+    tmp_path: Path, capfd: pytest.CaptureFixture[str], ending: str, error: str
+) -> None:
+    status, stderr, first = _run_ending(tmp_path, capfd, ending)
+    assert status == 1
+    (line,) = _robot_lines(stderr)
+    said = str(first["controller_error"])
+    if "PID" in error:
+        error = error.replace("PID", said.split("(pid ")[1].split(")")[0])
+    assert line == f"mazesim: robot 'first': {error}"
+    assert first["exit_status"] == 1
+    assert said == error
+    assert stderr.count("mazesim: ") == 2, stderr  # the import's line and the robot's

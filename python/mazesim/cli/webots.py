@@ -347,6 +347,8 @@ def run_webots(args: argparse.Namespace, out: TextIO) -> int:
         )
         if result.reached_end:
             steps.finish()
+    if getattr(out, "closed", False):
+        out = sys.stdout  # the controller closed it: the run opened it anew
     name = os.path.basename(result.controller)
     wall_clock = result.wall_clock_seconds
     step_s = result.simulated_seconds / result.steps if result.steps else 0.0

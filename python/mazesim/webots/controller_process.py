@@ -26,7 +26,16 @@ messages are pickled tuples). The protocol, from the controller's side:
 - ``("done", summary)``: the controller has ended (a dict of :class:`ControllerSummary`'s
   fields); no answer. From then on the robot's wheels turn as its motors' last commands have
   them (:mod:`mazesim.webots.last_commands`), as in Webots. A process that ends without this
-  report (killed, or crashed in native code) leaves the commands its last step sent.
+  report (``os._exit``, killed, crashed in native code) leaves the commands its last step sent;
+  the template it was forked from then writes how it ended (:mod:`mazesim.webots.process_template`).
+
+The report is sent whatever the controller did to its standard streams (closed, replaced). Only
+the controller's own process asks the world's process: a process the controller forks gets
+:class:`LinkLost` at its first call (the answers would go to either process), and so does a
+controller whose pipe is gone (it closed its file descriptor). A process that lost its link
+cannot report; it leaves why in its :class:`~mazesim.webots.process_template.LastWords` and ends
+with status 1, and the world's process says so (a forked process's words go with its
+controller's report).
 
 The controller itself runs as in a run of one robot (:func:`mazesim.webots.runner.run_controller`)
 against a :class:`RemoteSimulator`, which forwards the simulator's methods over the pipe.
@@ -34,24 +43,29 @@ against a :class:`RemoteSimulator`, which forwards the simulator's methods over 
 
 from __future__ import annotations
 
+import contextlib
+import errno
 import os
 import sys
 import threading
 from collections.abc import Sequence
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, replace
 from multiprocessing.connection import Connection
+from types import FrameType
 from typing import TYPE_CHECKING, Any
 
 from mazesim.webots.last_commands import WheelCommand
 
 if TYPE_CHECKING:
     from mazesim.webots.keyboard import KeyScript
+    from mazesim.webots.process_template import LastWords
     from mazesim.webots.requirements import PreparedController
 
 __all__ = [
     "STATE_AFTER_STEP",
     "ControllerJob",
     "ControllerSummary",
+    "LinkLost",
     "Remote",
     "RemoteSimulator",
     "controller_main",
@@ -106,10 +120,64 @@ class ControllerSummary:
     #: The wheel motors' commands as the controller left them, each a
     #: :class:`~mazesim.webots.last_commands.WheelCommand`'s fields.
     wheel_commands: tuple[dict[str, float], ...] = ()
+    #: Why a process the controller forked was refused the link, or "".
+    lost: str = ""
 
 
 #: Held while a question to the world's process waits for its answer.
 _ASKING = threading.RLock()
+
+
+class LinkLost(BaseException):
+    """Raised by a call to the world's process that cannot be made: the controller's pipe is
+    gone, or the caller is a process the controller forked. It derives from ``BaseException``
+    so that a controller's ``except Exception`` does not take it for its own error."""
+
+
+#: The controller's process, the only one that asks the world's process (set when its run
+#: starts); why its link was lost (None while it works); and why a process the controller
+#: forked was refused it (None while none called the API).
+_link: dict[str, Any] = {"pid": None, "lost": None, "refused": None}
+
+
+#: The file whose frame runs the controller's code.
+_RUNNER = os.path.join("webots", "runner.py")
+
+
+def _refusal(message: tuple[Any, ...]) -> LinkLost:
+    """The :class:`LinkLost` of a process the controller forked that asks ``message``; noted in
+    ``_link`` when the controller's own code asked (not the run's own reads at its end)."""
+    from mazesim.webots.termination import is_controllers
+
+    what = "Robot.step" if message[0] == "step" else "the controller API"
+    refused = (
+        f"a process the controller forked (pid {os.getpid()}) called {what}: only the "
+        "controller's own process is linked to the world's process, so that process was "
+        "stopped; call the API from the controller's process (a thread, or a forked process "
+        "that only computes)"
+    )
+    # The controller's code runs inside the runner's frame; the runner's own reads do not.
+    frame: FrameType | None = sys._getframe(1)
+    while frame is not None and not frame.f_code.co_filename.endswith(_RUNNER):
+        if is_controllers(frame) and _link["refused"] is None:
+            _link["refused"] = refused
+        frame = frame.f_back
+    return LinkLost(refused)
+
+
+def _lost(failure: BaseException) -> LinkLost:
+    """The :class:`LinkLost` of a failed message on the pipe, which no later call uses."""
+    if isinstance(failure, OSError) and failure.errno == errno.EBADF:
+        why = (
+            "the controller closed its file descriptor (os.close or os.closerange): close only "
+            "the files it opened"
+        )
+    elif isinstance(failure, (EOFError, BrokenPipeError, ConnectionError)):
+        why = "the world's process closed it"
+    else:
+        why = f"{type(failure).__name__}: {failure}"
+    _link["lost"] = f"the controller's link to the world's process was lost: {why}"
+    return LinkLost(_link["lost"])
 
 
 class Remote:
@@ -122,11 +190,19 @@ class Remote:
         self._methods: dict[str, Any] = {}
 
     def _ask(self, message: tuple[Any, ...]) -> Any:
+        if _link["pid"] is not None and os.getpid() != _link["pid"]:
+            raise _refusal(message)
+        if _link["lost"] is not None:
+            # Its file descriptor may name a file the controller opened since.
+            raise LinkLost(_link["lost"])
         # One question at a time on the pipe: a controller's threads that call the API at once
         # would read each other's answers (Webots' C library serialises its calls alike).
         with _ASKING:
-            self._connection.send(message)
-            status, value = self._connection.recv()
+            try:
+                self._connection.send(message)
+                status, value = self._connection.recv()
+            except (OSError, EOFError) as failure:
+                raise _lost(failure) from None
         if status == "error":
             raise value
         return value
@@ -271,13 +347,17 @@ def answer(target: Any, name: str, args: tuple[Any, ...] | None) -> tuple[str, A
         return ("error", failure)
 
 
-def controller_main(connection: Connection, job: ControllerJob) -> None:
+def controller_main(
+    connection: Connection, job: ControllerJob, last_words: LastWords | None = None
+) -> None:
     """Runs one robot's controller against the world of the process at the other end of
-    ``connection`` (the entry point of a controller process)."""
+    ``connection`` (the entry point of a controller process); ``last_words``: where it says why
+    it cannot report its end (:mod:`mazesim.webots.process_template`)."""
     from mazesim.webots.importer import import_wbt, import_wbt_text
     from mazesim.webots.runner import run_controller
     from mazesim.webots.scene import body_y_up, read_scene, read_world_text
 
+    _link["pid"] = os.getpid()
     text = job.world_text
     if text is None:
         world, imported = import_wbt(job.world_path, robot_line=job.robot_line)
@@ -315,9 +395,46 @@ def controller_main(connection: Connection, job: ControllerJob) -> None:
             tuple(asdict(command) for command in run.wheel_commands),
         )
         if run.error:
-            sys.stderr.write(run.error)
+            _say(run.error)
+    except LinkLost:
+        words = _link["lost"] if os.getpid() == _link["pid"] else _link["refused"]
+        if last_words is not None and words:
+            last_words.say(words)
+        raise SystemExit(1 if words else 0) from None
     finally:
-        sys.stdout.flush()
+        if os.getpid() == _link["pid"] and _link["lost"] is None:
+            _report(connection, summary, last_words)
+    if os.getpid() != _link["pid"]:
+        # A process the controller forked that left its code without a call: it ends as its
+        # run did, without a report (its controller's process sends the robot's).
+        raise SystemExit(summary.exit_status)
+
+
+def _say(text: str) -> None:
+    """Writes ``text`` on the standard error, or on its file descriptor when the controller
+    closed or broke ``sys.stderr``."""
+    try:
+        sys.stderr.write(text)
         sys.stderr.flush()
+    except (OSError, ValueError, AttributeError):
+        with contextlib.suppress(OSError):
+            os.write(2, text.encode("utf-8", "backslashreplace"))
+
+
+def _report(
+    connection: Connection, summary: ControllerSummary, last_words: LastWords | None
+) -> None:
+    """Sends the controller's report, whatever the controller did to its standard streams; a
+    link that fails now is left in ``last_words`` and the process ends with status 1."""
+    for stream in (sys.stdout, sys.stderr):
+        with contextlib.suppress(OSError, ValueError, AttributeError):
+            stream.flush()
+    if last_words is not None:
+        summary = replace(summary, lost=last_words.read())
+    try:
         connection.send(("done", asdict(summary)))
         connection.close()
+    except OSError as failure:
+        if last_words is not None:
+            last_words.say(str(_lost(failure)))
+        raise SystemExit(1) from None

@@ -15,6 +15,10 @@ their wheels where the world file puts them until a controller commands them (``
 first target position is its joint's position, src/webots/nodes/WbMotor.cpp). A robot whose
 controller has ended, returned, raised, or died without a word (killed, crashed in native
 code), goes on as its motors' last commands have it (:mod:`mazesim.webots.last_commands`).
+A controller process that ends without its report is said to, naming its robot, as it really
+ended: its exit status (``os._exit``), the signal that killed it (in the words of a crashed C
+controller: "killed by SIGSEGV"), or why its link to this process was lost (it closed the
+pipe's file descriptor, a process it forked called the API).
 A robot that is not an e-puck runs its controller on a body that does not move by
 itself and touches no wall. A supervisor sees and moves every robot through the
 :class:`Fleet`; its ``simulationQuit`` ends every controller's run (``Robot.step`` returns
@@ -68,6 +72,13 @@ from mazesim.webots.controller_process import (
 from mazesim.webots.keyboard import KeyScript
 from mazesim.webots.last_commands import Coasting, WheelCommand
 from mazesim.webots.line_of_sight import LineOfSight, robot_body_radii
+from mazesim.webots.native_controller import (
+    C_SUFFIXES,
+    CPP_SUFFIXES,
+    EXIT_CRASHED,
+    crash_error,
+    language_name,
+)
 from mazesim.webots.own_sensors import own_sensors
 from mazesim.webots.process_template import ControllerProcesses
 from mazesim.webots.proto_fields import declared_fields, robot_label
@@ -1289,16 +1300,23 @@ class _Pipes:
         try:
             message: Any = ready.recv()
         except (EOFError, OSError):
-            sent = self.sent_commands.get(index)
-            self._ended(index)
-            if sent is not None and self.movable[index] and index not in self.fleet.gone:
-                # Killed or crashed without a word: its motors keep what its last step sent.
-                self.coasting.start(index, held_commands(sent, self.simulators[index].wheel_turns))
-            if not run.error:
-                run.exit_status = run.exit_status or 1
-                run.error = "the controller's process ended without a report\n"
-                # Its own process did not say so, as it says a controller's traceback.
-                sys.stderr.write(f"mazesim: robot {_shown(run.name)}: {run.error}")
+            # The template that forked it is gone: nothing says how it ended.
+            self._without_report(
+                index, EXIT_CRASHED, "the controller's process ended without a report\n"
+            )
+            return
+        except Exception as failure:  # noqa: BLE001 - any message that does not unpickle
+            # Half a message, or another process's: nothing more on this pipe can be trusted.
+            ready.close()
+            self._without_report(
+                index,
+                EXIT_CRASHED,
+                "the controller's link to the world's process was lost: a message could not "
+                f"be read ({type(failure).__name__}: {failure}); it was ended\n",
+            )
+            return
+        if message[0] == "exit":
+            self._exited(index, message[1], message[2])
             return
         if message[0] == "call":
             self._answer(ready, index, message)
@@ -1320,6 +1338,48 @@ class _Pipes:
                 setattr(run, key, summary[key])
             run.quit_requested = bool(summary["quit_requested"])
             self.over = self.over or run.quit_requested
+            lost = summary.get("lost")
+            if lost:
+                # A process the controller forked called the API: the run failed with it.
+                run.exit_status = run.exit_status or EXIT_CRASHED
+                run.error = run.error or f"{lost}\n"
+                sys.stderr.write(f"mazesim: robot {_shown(run.name)}: {lost}\n")
+
+    def _exited(self, index: int, status: int, words: str) -> None:
+        """Notes that robot ``index``'s controller process ended without its report, as the
+        template saw it end: its exit ``status`` (minus the signal's number when killed) and the
+        ``words`` it left (why it could not report, or "")."""
+        run = self.runs[index]
+        if words:
+            self._without_report(index, status or EXIT_CRASHED, f"{words}\n")
+        elif status < 0:
+            self._without_report(index, EXIT_CRASHED, crash_error(_language(run), status))
+        elif status:
+            self._without_report(
+                index,
+                status,
+                f"the {_language(run)} controller's process exited with status {status} "
+                "without its report (as os._exit ends a process; sys.exit or a return "
+                "sends it)\n",
+            )
+        else:
+            self._without_report(index, 0, "")
+
+    def _without_report(self, index: int, status: int, error: str) -> None:
+        """Notes that robot ``index``'s controller ended without its report, with ``status``
+        and ``error`` (said on stderr, naming the robot, unless ""): its motors keep what its
+        last step sent."""
+        run = self.runs[index]
+        sent = self.sent_commands.get(index)
+        self._ended(index)
+        if sent is not None and self.movable[index] and index not in self.fleet.gone:
+            self.coasting.start(index, held_commands(sent, self.simulators[index].wheel_turns))
+        if run.error:
+            return
+        run.exit_status, run.error = status, error
+        if error:
+            # Its own process did not say so, as it says a controller's traceback.
+            sys.stderr.write(f"mazesim: robot {_shown(run.name)}: {error}")
 
     def _serve_retired(self, ready: Any) -> None:
         """Reads one message of a restarted controller's old process: its calls are answered,
@@ -1327,13 +1387,13 @@ class _Pipes:
         index = self.by_connection[id(ready)]
         try:
             message: Any = ready.recv()
-        except (EOFError, OSError):
+        except Exception:  # noqa: BLE001 - its pipe's end, or a message that does not unpickle
             message = ("done", None)
         if message[0] == "call":
             self._answer(ready, index, message)
         elif message[0] == "step":
             ready.send(("ok", (True, None)))
-        elif message[0] == "done":
+        elif message[0] in ("done", "exit"):
             del self.retired[id(ready)]
 
     def _answer(self, ready: Any, index: int, message: Any) -> None:
@@ -1400,6 +1460,14 @@ class WorldTraction:
         """Notes where the step left each robot."""
         for index in self.tractions:
             self._left[index] = tuple(float(v) for v in self._simulators[index].pose)  # type: ignore[assignment]
+
+
+def _language(run: RobotRun) -> str:
+    """The language of robot ``run``'s controller, as a crash names it."""
+    suffix = os.path.splitext(run.controller or "")[1].lower()
+    if suffix in (*C_SUFFIXES, *CPP_SUFFIXES):
+        return language_name(suffix)
+    return "BotStudio" if suffix == ".bsg" else "Python"
 
 
 def _step_world(

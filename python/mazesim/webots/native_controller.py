@@ -649,6 +649,12 @@ def _signal_name(status: int) -> str:
         return f"signal {-status}"
 
 
+def crash_error(language: str, status: int) -> str:
+    """The error of a ``language`` controller whose process was killed by signal ``-status``
+    (a negative exit status, as :mod:`subprocess` gives it)."""
+    return f"the {language} controller crashed: killed by {_signal_name(status)}\n"
+
+
 def drive(
     program: str,
     robot: Any,
@@ -725,8 +731,7 @@ def drive(
     if stopped:
         return 0, "", True
     if status < 0:
-        name = _signal_name(status)
-        return EXIT_CRASHED, f"the {language} controller crashed: killed by {name}\n", False
+        return EXIT_CRASHED, crash_error(language, status), False
     return status, "", False
 
 

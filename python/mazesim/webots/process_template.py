@@ -20,8 +20,15 @@ for that controller would:
   no controller stops in the middle of a call to the world's process; ``random`` and numpy's
   global generator are seeded anew (each child draws its own numbers, as fresh processes
   would);
-- it ends as a Python program ends (its threads joined, its ``atexit`` functions run), and a
-  child that dies without reporting is reported as a process that ended without a report.
+- it ends as a Python program ends (its threads joined, its ``atexit`` functions run).
+
+The template holds a copy of each child's end of its pipe until the child has ended, then writes
+on it ``("exit", status, words)``: the child's exit status as :func:`os.waitstatus_to_exitcode`
+gives it (minus the signal's number for a child killed by a signal) and what the child left in its
+:class:`LastWords` (why it could not report its end, or ""). A child that ends without its report
+(``os._exit``, killed, crashed in native code, its pipe closed) is so reported by how it really
+ended; the world's process reads the message after whatever the child wrote, and stops reading a
+child's pipe once the child has reported its end.
 
 The template itself never runs a controller. It ignores Ctrl-C (the world's process tells it when
 the run is over), waits for its children at the end and kills those still running
@@ -35,9 +42,11 @@ forks a child that runs :func:`~mazesim.webots.controller_process.controller_mai
 
 from __future__ import annotations
 
+import contextlib
 import gc
 import io
 import json
+import mmap
 import os
 import signal
 import socket
@@ -46,10 +55,10 @@ import sys
 import time
 import warnings
 from multiprocessing import reduction
-from multiprocessing.connection import Connection
+from multiprocessing.connection import Connection, wait
 from typing import Any
 
-__all__ = ["ControllerProcesses", "serve"]
+__all__ = ["ControllerProcesses", "LastWords", "serve"]
 
 #: The template's program: the world's process's import path, then :func:`serve`; in a child it
 #: goes on to run the controller and ends as a Python program ends.
@@ -135,15 +144,59 @@ def _preload() -> None:
     from mazesim.webots import controller, importer, proto, runner, scene  # noqa: F401
 
 
-def serve(fd: int) -> tuple[Connection, Any]:
+class LastWords:
+    """A few bytes of memory a child shares with the template (not a file descriptor, which the
+    controller may close): where the child's process says why it could not report its end over
+    its pipe. The first words said are kept."""
+
+    #: Bytes of the region (a length, then the words in UTF-8).
+    SIZE = 4096
+
+    def __init__(self) -> None:
+        self._region = mmap.mmap(-1, self.SIZE)
+
+    def say(self, words: str) -> None:
+        """Leaves ``words`` (cut to what the region holds), unless words were left already."""
+        if self.read():
+            return
+        data = words.encode("utf-8", "replace")[: self.SIZE - 4]
+        self._region[4 : 4 + len(data)] = data
+        self._region[:4] = len(data).to_bytes(4, "little")
+
+    def read(self) -> str:
+        """The words left, or ""."""
+        size = min(int.from_bytes(self._region[:4], "little"), self.SIZE - 4)
+        return self._region[4 : 4 + size].decode("utf-8", "replace")
+
+    def close(self) -> None:
+        """Unmaps the region (in this process)."""
+        self._region.close()
+
+
+def serve(fd: int) -> tuple[Connection, Any, LastWords]:
     """The template's loop on the pipe of file descriptor ``fd``; returns only in a child, with
-    the controller's pipe and job (the template exits when the run is over)."""
+    the controller's pipe, job and :class:`LastWords` (the template exits when the run is
+    over)."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     control = Connection(fd)
     _preload()
-    children: set[int] = set()
+    # A child's end wakes the loop (the signal's handler does nothing: the byte Python writes
+    # for it on the wake-up pipe does).
+    awake, waking = os.pipe()
+    os.set_blocking(awake, False)
+    os.set_blocking(waking, False)
+    signal.set_wakeup_fd(waking)
+    signal.signal(signal.SIGCHLD, lambda signum, frame: None)
+    children: dict[int, tuple[Connection, LastWords]] = {}
     exit_wait_seconds = 0.0
     while True:
+        ready = wait([control, awake])
+        if awake in ready:
+            with contextlib.suppress(OSError):
+                os.read(awake, 512)
+        _reap(children, block=False)
+        if control not in ready:
+            continue
         try:
             message = control.recv()
         except (EOFError, OSError):
@@ -153,6 +206,7 @@ def serve(fd: int) -> tuple[Connection, Any]:
             break
         job = message[1]
         handle = reduction.recv_handle(control)
+        words = LastWords()
         # What the template holds is never collected by the child's garbage collector, so the
         # child does not copy the memory it shares with the template to mark it (the child's
         # own objects are collected as ever).
@@ -165,11 +219,17 @@ def serve(fd: int) -> tuple[Connection, Any]:
             child = os.fork()
         if child == 0:
             control.close()
+            # The other children's pipes and words are not this child's.
+            for link, said in children.values():
+                link.close()
+                said.close()
+            signal.set_wakeup_fd(-1)
+            signal.signal(signal.SIGCHLD, signal.SIG_DFL)
+            os.close(awake)
+            os.close(waking)
             _become_fresh()
-            return Connection(handle), job
-        os.close(handle)
-        children.add(child)
-        _reap(children, block=False)
+            return Connection(handle), job, words
+        children[child] = (Connection(handle), words)
     control.close()
     deadline = time.monotonic() + exit_wait_seconds
     while children and time.monotonic() < deadline:
@@ -206,12 +266,21 @@ def _whole_lines(stream: Any, fd: int) -> Any:
     )
 
 
-def _reap(children: set[int], *, block: bool) -> None:
-    """Collects the children that have ended (all of them, waiting, when ``block``)."""
-    for child in list(children):
+def _reap(children: dict[int, tuple[Connection, LastWords]], *, block: bool) -> None:
+    """Collects the children that have ended (all of them, waiting, when ``block``), and writes
+    on each one's pipe how it ended: ``("exit", status, words)``."""
+    for child, (link, words) in list(children.items()):
         try:
-            done, _ = os.waitpid(child, 0 if block else os.WNOHANG)
+            done, status = os.waitpid(child, 0 if block else os.WNOHANG)
         except ChildProcessError:
-            done = child
-        if done:
-            children.discard(child)
+            done, status = child, 0
+        if not done:
+            continue
+        del children[child]
+        # Never waits on a world's process that does not read (it has stopped listening to a
+        # child that reported its end).
+        os.set_blocking(link.fileno(), False)
+        with contextlib.suppress(OSError):
+            link.send(("exit", os.waitstatus_to_exitcode(status), words.read()))
+        link.close()
+        words.close()

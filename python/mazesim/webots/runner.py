@@ -44,6 +44,7 @@ __all__ = [
     "EXIT_INTERRUPTED",
     "ControllerRun",
     "controller_file",
+    "process_status",
     "run_controller",
 ]
 
@@ -320,6 +321,7 @@ def run_controller(
     started = time.perf_counter()
     status, error = 0, ""
     watchdog = termination.Watchdog(simulation, controller_module.ControllerStopped, stall_seconds)
+    streams = _standard_streams()
     display = contextlib.ExitStack()
     try:
         if prepared.virtual_display:
@@ -348,6 +350,7 @@ def run_controller(
         status = EXIT_CONTROLLER_ERROR
         error = _controller_traceback(failure)
     finally:
+        _reopen_closed(streams)
         display.close()
         if saved_home is None:
             os.environ.pop("WEBOTS_HOME", None)
@@ -359,6 +362,36 @@ def run_controller(
         controller_module.Robot.created = None
         simulations.release()
     return _outcome(world, file, simulation, started, status, error, stalled=watchdog.stalled)
+
+
+def _standard_streams() -> dict[str, int]:
+    """The file descriptor of ``sys.stdout`` and ``sys.stderr``, by name (those that have one)."""
+    found = {}
+    for name in ("stdout", "stderr"):
+        try:
+            found[name] = int(getattr(sys, name).fileno())
+        except (AttributeError, OSError, ValueError):
+            continue  # a stream in memory (a test's capture) or none
+    return found
+
+
+def _reopen_closed(streams: dict[str, int]) -> None:
+    """Opens anew, on the same file descriptor, each standard stream of ``streams`` that the
+    controller closed (``sys.stdout.close()``), so that what is written after its run (the
+    run's summary, its report to the world's process) is not lost."""
+    for name, fd in streams.items():
+        stream = getattr(sys, name)
+        if not getattr(stream, "closed", False):
+            continue
+        with contextlib.suppress(OSError):
+            os.fstat(fd)  # still open: only the stream was closed
+            reopened = io.TextIOWrapper(
+                io.BufferedWriter(io.FileIO(fd, "w", closefd=False)),
+                encoding=getattr(stream, "encoding", None) or "utf-8",
+                errors="backslashreplace",
+                line_buffering=True,
+            )
+            setattr(sys, name, reopened)
 
 
 def _run_native(
@@ -501,8 +534,17 @@ def _exit_status(request: SystemExit) -> tuple[int, str]:
         return 0, ""
     if isinstance(code, int):
         # sys.exit(True) ends Python with status 1: a number, not a bool, in the summary.
-        return int(code), ""
+        return process_status(int(code)), ""
     return EXIT_CONTROLLER_ERROR, f"{code}\n"
+
+
+def process_status(code: int) -> int:
+    """The exit status a process ended by ``sys.exit(code)`` has: Python hands the system a C
+    ``long`` (255 for a number outside one), of which the system keeps the low 8 bits
+    (``sys.exit(256)`` ends with 0, ``sys.exit(-1)`` with 255)."""
+    if not -(2**63) <= code < 2**63:
+        return 255
+    return code & 0xFF
 
 
 #: The folder of the package's own modules (a controller's frames are outside it).

@@ -50,7 +50,7 @@ _PACKAGE = os.path.dirname(os.path.dirname(os.path.abspath(__file__))) + os.sep
 _previous: list[tuple[Any, Any]] = []
 
 
-def _is_controllers(frame: FrameType) -> bool:
+def is_controllers(frame: FrameType) -> bool:
     """Whether ``frame`` runs the controller's code (any code but mazesim's own)."""
     return not os.path.abspath(frame.f_code.co_filename).startswith(_PACKAGE)
 
@@ -65,12 +65,12 @@ def unwind_controller(stop: type[BaseException], message: str) -> None:
     """
 
     def at_each_line(frame: FrameType, event: str, arg: Any) -> Any:
-        if event == "line" and _is_controllers(frame):
+        if event == "line" and is_controllers(frame):
             raise stop(message)
         return at_each_line
 
     def at_each_call(frame: FrameType, event: str, arg: Any) -> Any:
-        return at_each_line if _is_controllers(frame) else None
+        return at_each_line if is_controllers(frame) else None
 
     def trace_again(frame: FrameType, event: str, arg: Any) -> None:
         if sys.gettrace() is not at_each_call:
@@ -89,7 +89,7 @@ def _trace_controller_frames(frame: FrameType | None, trace: Any) -> None:
     while frame is not None and not frame.f_code.co_filename.endswith(
         os.path.join("webots", "runner.py")
     ):
-        if _is_controllers(frame):
+        if is_controllers(frame):
             frame.f_trace = trace
         frame = frame.f_back
 
