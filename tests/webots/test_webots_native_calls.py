@@ -150,7 +150,7 @@ def test_wrong_tags_null_nodes_and_empty_queues_get_webots_messages(
         "self E-puck",
     ]
     errors = err.splitlines()
-    assert "Error: wb_emitter_send() called with an invalid device tag." in errors
+    assert "Error: wb_emitter_send(): invalid device tag." in errors
     assert "Error: wb_receiver_get_data(): the receiver queue is empty." in errors
     assert "Error: wb_supervisor_node_get_field() called with a NULL 'node' argument." in errors
     assert (
@@ -185,7 +185,7 @@ def test_a_display_draws_nothing_and_the_run_says_so_at_its_start(
     out, err = capfd.readouterr()
     # The e-puck has no display: Webots' message for each call on the absent device.
     assert out == "0 0\n"
-    assert "Error: wb_display_draw_line() called with an invalid device tag." in err
+    assert "Error: wb_display_draw_line(): invalid device tag." in err
 
 
 def test_headers_spelled_in_another_case_build_as_on_windows(tmp_path: Path) -> None:

@@ -31,7 +31,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
-from mazesim.errors import MazesimIOError, _shown
+from mazesim.errors import InvalidArgumentError, MazesimIOError, _shown
 from mazesim.webots.camera import CameraRecognitionObject
 from mazesim.webots.devices import _print_error
 from mazesim.webots.field import Field
@@ -433,7 +433,14 @@ class NativeCalls:
             return [None]
         method: Callable[..., Any] = getattr(target, function.method)
         arguments = [self._argument(kind, value) for kind, value in zip(function.arguments, values)]
-        return self._answer(method(*arguments))
+        try:
+            result = method(*arguments)
+        except InvalidArgumentError as error:
+            # Webots' C library refuses an argument with a message and the function's default
+            # answer (no value here), and the controller goes on: it never ends it.
+            _print_error(f"Error: {name}(): {error}")
+            return [None]
+        return self._answer(result)
 
     # --- the first argument ----------------------------------------------------------------
 
@@ -462,7 +469,7 @@ class NativeCalls:
             device = self._device(first)
             # A tag of a device of another kind: Webots' message for a wrong tag.
             if device is None or getattr(type(device), function.method, None) is None:
-                _print_error(f"Error: {name}() called with an invalid device tag.")
+                _print_error(f"Error: {name}(): invalid device tag.")
                 return None
             return device
         handles: list[Any] = self._nodes if function.target == "node" else self._fields

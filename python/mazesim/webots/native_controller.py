@@ -41,6 +41,7 @@ from mazesim.webots.controller_makefile import (
     makefile,
     read_makefile,
 )
+from mazesim.webots.devices import MAX_SAMPLING_PERIOD_MS
 from mazesim.webots.shipped_program import LIBRARY, shipped_program
 from mazesim.webots.termination import GRACE_SECONDS
 
@@ -710,7 +711,7 @@ def drive(
     except native_link.LinkClosed:
         pass
     except MazesimError as error:
-        # A malformed message or a call the API refuses (a negative step...): the run's error.
+        # A malformed message, or a refusal the library does not answer as Webots: the run's error.
         process.kill()
         failure = f"{type(error).__name__}: {error}\n"
     except BaseException:
@@ -762,6 +763,20 @@ def _ends_with_its_parent() -> Callable[[], None] | None:
     return in_the_child
 
 
+def _step(robot: Any, duration: int) -> int:
+    """Runs a compiled controller's ``wb_robot_step(duration)``. Webots' library sends the
+    duration as an unsigned 32-bit count of ms, so a negative one asks for 2**32 - |duration|
+    ms: no message, and the controller waits in that step until the run's end (-1), as in
+    Webots it waits for weeks of simulated time."""
+    left = duration % 2**32
+    while True:
+        part = min(left, MAX_SAMPLING_PERIOD_MS)
+        result = robot.step(part)
+        left -= part
+        if result != 0 or left <= 0:
+            return int(result)
+
+
 def _serve(link: native_link.RobotLink, robot: Any) -> bool:
     """Serves the controller's messages; True when it was stopped for going on after the end."""
     simulation = robot._simulation
@@ -786,7 +801,7 @@ def _serve(link: native_link.RobotLink, robot: Any) -> bool:
                 link.answer_step(-1)
                 continue
             link.apply(commands)
-            result = robot.step(duration)
+            result = _step(robot, duration)
             if result == -1:
                 ended_at = time.monotonic()
             link.answer_step(result)

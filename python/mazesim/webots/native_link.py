@@ -344,7 +344,7 @@ class RobotLink:
         if call is None:
             # A tag of another kind of device (wb_led_set on a motor...): Webots' message.
             function = method[1] if method else "wb_robot_step"
-            print(f"Error: {function}() called with an invalid device tag.", file=sys.stderr)
+            print(f"Error: {function}(): invalid device tag.", file=sys.stderr)
             return
         if op == ENABLE:
             call(int(value))

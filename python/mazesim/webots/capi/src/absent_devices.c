@@ -5,7 +5,6 @@
    finds none, as its Python twin does. */
 #include <math.h>
 #include <stddef.h>
-#include <stdio.h>
 
 #include <webots/brake.h>
 #include <webots/connector.h>
@@ -18,7 +17,7 @@
 /* Prints Webots' message for a tag that is no device of this kind. */
 static void refused(const char *function) {
   link_start();
-  fprintf(stderr, "Error: %s() called with an invalid device tag.\n", function);
+  link_error(function, "(): invalid device tag.");
 }
 
 void wb_brake_set_damping_constant(WbDeviceTag tag, double damping_constant) {

@@ -16,6 +16,10 @@
 static __thread char *message;
 static __thread size_t message_size, message_capacity, count_at;
 static __thread int32_t value_count;
+/* The function of the call being built, and the size of a value too large for the link that it
+   holds (0 for none): such a call is not sent. */
+static __thread const char *calling;
+static __thread int oversized;
 
 typedef struct {
   int32_t type;
@@ -53,6 +57,8 @@ static void append_int(int32_t value) {
 }
 
 void call_begin(const char *function) {
+  calling = function;
+  oversized = 0;
   message_size = 0;
   int32_t size = (int32_t)strlen(function);
   append_int(size);
@@ -77,6 +83,9 @@ void call_double(double value) {
 void call_bytes(const void *data, int size) {
   if (!data || size < 0) {
     append_int(VALUE_NONE);
+  } else if (size > LINK_MAX_VALUE_BYTES) {
+    oversized = size;
+    append_int(VALUE_NONE);
   } else {
     append_int(VALUE_BYTES);
     append_int(size);
@@ -91,6 +100,9 @@ void call_text(const char *text) {
 
 void call_doubles(const double *numbers, int count) {
   if (!numbers || count < 0) {
+    append_int(VALUE_NONE);
+  } else if ((size_t)count > LINK_MAX_VALUE_BYTES / sizeof(double)) {
+    oversized = count;
     append_int(VALUE_NONE);
   } else {
     append_int(VALUE_DOUBLES);
@@ -107,6 +119,14 @@ static int32_t receive_int(void) {
 }
 
 int call_end(void) {
+  if (oversized) {
+    /* Refused as Webots refuses a bad argument: the function answers its default. */
+    link_error(calling,
+               "(): invalid size=%d argument: more than mazesim carries in a call (%d bytes).",
+               oversized, LINK_MAX_VALUE_BYTES);
+    answered = 0;
+    return 0;
+  }
   memcpy(message + count_at, &value_count, sizeof value_count);
   link_start();
   link_lock();

@@ -30,19 +30,26 @@
 
 /* --- any device ---------------------------------------------------------------------------- */
 
+/* As Webots' device.c, these say nothing of a wrong tag: tag 0 is the robot, a tag past the
+   devices none (NULL, WB_NODE_NO_NODE). */
+static Device *any_device(WbDeviceTag tag) {
+  link_start();
+  return tag >= 1 && tag <= link_robot.device_count ? &link_robot.devices[tag - 1] : NULL;
+}
+
 const char *wb_device_get_name(WbDeviceTag tag) {
-  Device *device = link_device(tag, "wb_device_get_name");
-  return device ? device->name : NULL;
+  Device *device = any_device(tag);
+  return device ? device->name : tag == 0 ? link_robot.name : NULL;
 }
 
 const char *wb_device_get_model(WbDeviceTag tag) {
-  Device *device = link_device(tag, "wb_device_get_model");
+  Device *device = any_device(tag);
   return device ? device->model : NULL;
 }
 
 WbNodeType wb_device_get_node_type(WbDeviceTag tag) {
-  Device *device = link_device(tag, "wb_device_get_node_type");
-  return device ? device->node_type : WB_NODE_NO_NODE;
+  Device *device = any_device(tag);
+  return device ? device->node_type : tag == 0 ? WB_NODE_ROBOT : WB_NODE_NO_NODE;
 }
 
 WbNodeType wb_device_get_type(WbDeviceTag tag) {

@@ -4,6 +4,7 @@
 #include <errno.h>
 #include <math.h>
 #include <pthread.h>
+#include <stdarg.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -184,10 +185,59 @@ void link_command(int op, int tag, double a, double b) {
   link_unlock();
 }
 
+void link_error(const char *function, const char *format, ...) {
+  va_list arguments;
+  va_start(arguments, format);
+  fprintf(stderr, "Error: %s", function);
+  vfprintf(stderr, format, arguments);
+  fputc('\n', stderr);
+  va_end(arguments);
+}
+
+/* The kinds of devices whose tags the functions of a prefix take; a function of no prefix here
+   (wb_device_...) takes any device. */
+static const struct {
+  const char *prefix;
+  WbNodeType types[2];
+} kinds[] = {
+  {"wb_accelerometer_", {WB_NODE_ACCELEROMETER}},
+  {"wb_altimeter_", {WB_NODE_ALTIMETER}},
+  {"wb_camera_", {WB_NODE_CAMERA}},
+  {"wb_compass_", {WB_NODE_COMPASS}},
+  {"wb_display_", {WB_NODE_DISPLAY}},
+  {"wb_distance_sensor_", {WB_NODE_DISTANCE_SENSOR}},
+  {"wb_emitter_", {WB_NODE_EMITTER}},
+  {"wb_gps_", {WB_NODE_GPS}},
+  {"wb_gyro_", {WB_NODE_GYRO}},
+  {"wb_inertial_unit_", {WB_NODE_INERTIAL_UNIT}},
+  {"wb_led_", {WB_NODE_LED}},
+  {"wb_lidar_", {WB_NODE_LIDAR}},
+  {"wb_light_sensor_", {WB_NODE_LIGHT_SENSOR}},
+  {"wb_motor_", {WB_NODE_ROTATIONAL_MOTOR, WB_NODE_LINEAR_MOTOR}},
+  {"wb_pen_", {WB_NODE_PEN}},
+  {"wb_position_sensor_", {WB_NODE_POSITION_SENSOR}},
+  {"wb_range_finder_", {WB_NODE_RANGE_FINDER}},
+  {"wb_receiver_", {WB_NODE_RECEIVER}},
+  {"wb_speaker_", {WB_NODE_SPEAKER}},
+  {"wb_touch_sensor_", {WB_NODE_TOUCH_SENSOR}},
+};
+
+/* Whether `function` takes the tags of devices of `type`. */
+static int takes(const char *function, WbNodeType type) {
+  for (size_t i = 0; i < sizeof kinds / sizeof kinds[0]; i++)
+    if (strncmp(function, kinds[i].prefix, strlen(kinds[i].prefix)) == 0)
+      return type == kinds[i].types[0] || type == kinds[i].types[1];
+  return 1;
+}
+
 Device *link_device(WbDeviceTag tag, const char *function) {
   link_start();
-  if (tag == 0 || tag > link_robot.device_count) {
-    fprintf(stderr, "Error: %s() called with an invalid device tag.\n", function);
+  /* Tag 0 is the robot itself, no device; a tag past the devices is none at all. */
+  if (tag > link_robot.device_count)
+    fprintf(stderr, "Error: device with tag=%d not found.\n", (int)tag);
+  if (tag == 0 || tag > link_robot.device_count ||
+      !takes(function, link_robot.devices[tag - 1].node_type)) {
+    link_error(function, "(): invalid device tag.");
     return NULL;
   }
   return &link_robot.devices[tag - 1];
@@ -244,6 +294,9 @@ int wb_robot_init(void) {
   return 1;
 }
 
+/* Webots' library sends the duration as an unsigned count of ms: a negative one asks for a step
+   of 2^32 - |duration| ms, which outlasts any run (mazesim reads it so, see
+   native_controller.py), without a message. */
 int wb_robot_step(int duration) {
   link_start();
   link_lock();
@@ -341,12 +394,15 @@ void wb_robot_set_mode(WbRobotMode mode, const char *argument) {
 }
 
 WbDeviceTag wb_robot_get_device(const char *name) {
+  if (!name || !name[0]) {
+    link_error("wb_robot_get_device", "() called with NULL or empty argument.");
+    return 0;
+  }
   link_start();
   for (int i = 0; i < link_robot.device_count; i++)
-    if (name && strcmp(link_robot.devices[i].name, name) == 0)
+    if (strcmp(link_robot.devices[i].name, name) == 0)
       return (WbDeviceTag)(i + 1);
-  fprintf(stderr, "Device \"%s\" was not found on robot \"%s\"\n", name ? name : "(null)",
-          link_robot.name);
+  fprintf(stderr, "Warning: \"%s\" device not found.\n", name);
   return 0;
 }
 
@@ -358,8 +414,7 @@ int wb_robot_get_number_of_devices(void) {
 WbDeviceTag wb_robot_get_device_by_index(int index) {
   link_start();
   if (index < 0 || index >= link_robot.device_count) {
-    fprintf(stderr, "Error: wb_robot_get_device_by_index(): index %d out of range [0, %d).\n",
-            index, link_robot.device_count);
+    fprintf(stderr, "Error: The index of wb_robot_get_device_by_index() is out of the bounds.\n");
     return 0;
   }
   return (WbDeviceTag)(index + 1);

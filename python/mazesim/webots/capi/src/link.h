@@ -95,7 +95,18 @@ void link_receive(void *data, size_t size);
 void link_lock(void);
 void link_unlock(void);
 
-/* The device of a tag, or NULL after printing Webots' message naming `function`. */
+/* Most bytes a value of a call carries (MAX_VALUE_BYTES in native_link.py). */
+#define LINK_MAX_VALUE_BYTES (1 << 26)
+
+/* Prints Webots' message for a refused argument or use: "Error: ", the function's name, then
+   the rest as printf formats it. The caller returns what Webots' function returns after such a
+   message, and the controller goes on. */
+void link_error(const char *function, const char *format, ...)
+  __attribute__((format(printf, 2, 3)));
+
+/* The device of a tag, or NULL after printing Webots' message naming `function`. As in Webots,
+   a function of one kind of device (named wb_motor_..., wb_camera_...) refuses the tags of the
+   other kinds. */
 Device *link_device(WbDeviceTag tag, const char *function);
 
 #endif

@@ -13,11 +13,19 @@
 #include "link.h"
 
 int wb_emitter_send(WbDeviceTag tag, const void *data, int size) {
+  if (!data) {
+    link_error("wb_emitter_send", "(): invalid argument: data = NULL.");
+    return 0;
+  }
+  if (size < 1) {
+    link_error("wb_emitter_send", "(): invalid size=%d argument.", size);
+    return 0;
+  }
   if (!link_device(tag, "wb_emitter_send"))
     return 0;
   call_begin("wb_emitter_send");
   call_int(tag);
-  call_bytes(data, data ? size : -1);
+  call_bytes(data, size);
   call_end();
   return answer_int(0);
 }
@@ -44,6 +52,10 @@ double wb_emitter_get_range(WbDeviceTag tag) {
 }
 
 void wb_emitter_set_range(WbDeviceTag tag, double range) {
+  if (range < 0.0 && range != -1.0) {
+    link_error("wb_emitter_set_range", "(): invalid range=%f argument.", range);
+    return;
+  }
   if (!link_device(tag, "wb_emitter_set_range"))
     return;
   call_begin("wb_emitter_set_range");
@@ -138,5 +150,8 @@ const double *wb_receiver_get_emitter_direction(WbDeviceTag tag) {
   const double *direction = answer_doubles(0, &count);
   for (int i = 0; i < 3; i++)
     device->direction[i] = direction && i < count ? direction[i] : NAN;
+  /* An empty queue has no direction (the call said so, answering NaNs): NULL, as in Webots. */
+  if (isnan(device->direction[0]) && isnan(device->direction[1]) && isnan(device->direction[2]))
+    return NULL;
   return device->direction;
 }

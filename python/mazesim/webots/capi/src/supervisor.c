@@ -297,6 +297,11 @@ bool wb_supervisor_node_is_proto(WbNodeRef node) {
 }
 
 static WbFieldRef field_of(WbNodeRef node, const char *name, const char *function) {
+  /* A NULL node is refused first, by the call. */
+  if (node && (!name || !name[0])) {
+    link_error(function, "() called with a NULL or empty 'field_name' argument.");
+    return NULL;
+  }
   call_node(function, node);
   call_text(name);
   call_end();
@@ -541,6 +546,11 @@ void wb_supervisor_field_set_sf_color(WbFieldRef field, const double values[3]) 
 }
 
 void wb_supervisor_field_set_sf_string(WbFieldRef field, const char *value) {
+  /* A NULL field is refused first, by the call. */
+  if (field && !value) {
+    link_error("wb_supervisor_field_set_sf_string", "() called with a NULL string argument.");
+    return;
+  }
   call_field("wb_supervisor_field_set_sf_string", field);
   call_text(value);
   call_end();

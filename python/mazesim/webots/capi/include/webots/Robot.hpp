@@ -3,6 +3,8 @@
 #ifndef WB_ROBOT_HPP
 #define WB_ROBOT_HPP
 
+#include <cstdlib>
+#include <iostream>
 #include <map>
 #include <string>
 
@@ -12,7 +14,16 @@
 namespace webots {
   class Robot {
   public:
-    Robot() { wb_robot_init(); }
+    // As Webots' Robot.cpp: a second Robot (or Supervisor) ends the controller, status 255.
+    Robot() {
+      if (instance()) {
+        std::cerr << "Only one instance of the Robot class should be created" << std::endl;
+        wb_robot_cleanup();
+        exit(-1);
+      }
+      instance() = this;
+      wb_robot_init();
+    }
     virtual ~Robot() {
       typedef std::map<WbDeviceTag, Device *>::iterator Owned;
       for (Owned i = ownDevices.begin(); i != ownDevices.end(); ++i)
@@ -136,6 +147,11 @@ namespace webots {
     }
 
   private:
+    // The first Robot made (one for the whole program, the header's functions being inline).
+    static Robot *&instance() {
+      static Robot *first = 0;
+      return first;
+    }
     Device *device(WbDeviceTag tag) {
       if (!tag)
         return 0;
