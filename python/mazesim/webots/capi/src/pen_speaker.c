@@ -66,7 +66,11 @@ bool wb_speaker_set_language(WbDeviceTag tag, const char *language) {
 
 /* The text `function` answers for the speaker `tag`, kept until its next such call. */
 static const char *speaker_text(const char *function, WbDeviceTag tag) {
-  return speaker_text_call(function, tag, NULL) ? answer_kept_text(0, function, tag) : NULL;
+  if (!link_device(tag, function))
+    return NULL;
+  call_begin(function);
+  call_int(tag);
+  return call_end() ? answer_kept_text(0, function, tag) : NULL;
 }
 
 const char *wb_speaker_get_engine(WbDeviceTag tag) {
