@@ -71,3 +71,21 @@ def test_its_devices_read_in_their_own_y_up_frames(capfd: pytest.CaptureFixture[
     (start, steady) = _frames("z_up_body.wbt", capfd)
     assert start[:3] == pytest.approx([0.0, 0.0, 1.5708], abs=1e-3)
     assert start[3] > 0.5 and steady[3:] == pytest.approx([0.0, 0.0, 9.81], abs=0.1)
+
+
+def test_a_still_robot_built_y_up_looks_ahead_with_its_camera_upright(
+    capfd: pytest.CaptureFixture[str],
+) -> None:
+    # A robot that is no e-puck stays where its node stands; built Y-up and stood upright, its
+    # camera (turned to look along the body's -z, its own z along the body's y) looks at the
+    # red box 0.4 m ahead (+y), upright: 0.2 m wide and 0.1 m high at 0.375 m, it fills about
+    # 10.7 of the 16 columns (0.785 rad across) and 5.2 of the 8 rows, centred.
+    run = run_world(str(WORLDS / "still_camera.wbt"), seconds=0.1)
+    assert [robot.exit_status for robot in run.robots] == [0, 0], run.robots
+    (line,) = [x for x in capfd.readouterr().out.splitlines() if x.startswith("image ")]
+    rows = line.split()[1].split("|")
+    seen = [row for row in rows if "R" in row]
+    assert 4 <= len(seen) <= 6 and "R" not in rows[0] + rows[-1], rows
+    for row in seen:
+        left, right = len(row) - len(row.lstrip(".")), len(row) - len(row.rstrip("."))
+        assert abs(left - right) <= 1 and 9 <= row.count("R") <= 12, rows

@@ -24,7 +24,7 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-from mazesim.webots.frames import SLOT_ORIGINS, nue_to_enu, rotation_matrix
+from mazesim.webots.frames import ENU_TO_NUE, SLOT_ORIGINS, nue_to_enu, rotation_matrix
 from mazesim.webots.proto.syntax import line_numbers, nodes_in_order, parse_nodes
 from mazesim.webots.scene import Scene, SceneNode, _definitions
 
@@ -104,10 +104,20 @@ def _frame(node: SceneNode, scaled: bool = True) -> tuple[Matrix, Matrix]:
     return linear, origin
 
 
+#: The cosine of the largest tilt of a robot node's axis still taken as pointing up (the
+#: import's tolerance, 0.01 rad).
+_UP_COSINE = math.cos(0.01)
+
+
 def _level(linear: Matrix, origin: Matrix) -> tuple[Matrix, Matrix]:
     """A robot node's frame (in the world) seen from its frame on the floor: heading from its
     forward axis projected on the floor (0 when it points straight up or down), as the import
-    takes a robot's start pose."""
+    takes a robot's start pose. A body built Y-up and stood upright by its rotation (its local y
+    up in a file since R2022a; a file before has its nodes turned already) faces its local -z,
+    as the import reads it: its frame is taken turned so (its Z-up frame)."""
+    up = linear[:, 1] / (np.linalg.norm(linear[:, 1]) or 1.0)
+    if up[2] >= _UP_COSINE:
+        linear = linear @ np.asarray(ENU_TO_NUE, dtype=np.float64)
     forward = linear[:, 0]
     yaw = math.atan2(forward[1], forward[0]) if math.hypot(forward[0], forward[1]) > 1e-9 else 0.0
     c, s = math.cos(yaw), math.sin(yaw)
