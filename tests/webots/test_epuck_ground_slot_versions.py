@@ -13,6 +13,7 @@ the centre, looking down: a dark strip under the robot's front left darkens gs0 
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
 import pytest
@@ -54,3 +55,26 @@ def test_a_strip_under_the_front_left_darkens_gs0_alone(tmp_path: Path, version:
     left, middle, right = (sensor.getValue() for sensor in sensors)
     assert left < 0.7 * middle, (left, middle, right)
     assert right == pytest.approx(middle, rel=0.1), (left, middle, right)
+
+
+def test_an_infra_red_sensor_in_the_slot_reads_the_floor_from_its_0_3_mm(tmp_path: Path) -> None:
+    # Since R2022a the slot holds its nodes 0.3 mm above the floor: an infra-red sensor turned
+    # to look straight down on white paint (reflection factor 1) reads 0.0003 m through the
+    # default table (0.1 m: 1000), 3.0; one tilted 0.131 rad back from straight down, 0.3 mm
+    # / sin(1.7017), 3.026 (Webots casts from the sensor's own height).
+    text = (
+        "#VRML_SIM R2025a utf8\nWorldInfo { basicTimeStep 16 }\n"
+        "RectangleArena { floorSize 2 2\n"
+        "  floorAppearance PBRAppearance { baseColor 1 1 1 roughness 0 metalness 0 } }\n"
+        'E-puck { supervisor TRUE controller "<extern>" groundSensorsSlot [\n'
+        '  DistanceSensor { rotation 0 1 0 1.5708 name "down" type "infra-red" }\n'
+        '  DistanceSensor { rotation 0 1 0 1.7017 name "tilted" type "infra-red" } ] }\n'
+    )
+    robot = supervisor_in(tmp_path, text, noise=False)
+    sensors = [robot.getDevice(name) for name in ("down", "tilted")]
+    for sensor in sensors:
+        sensor.enable(16)
+    robot.step(16)
+    down, tilted = (sensor.getValue() for sensor in sensors)
+    assert down == pytest.approx(3.0, abs=0.01)
+    assert tilted == pytest.approx(3.0 / math.sin(1.7017), abs=0.01)

@@ -31,6 +31,10 @@ ENDLESS = {
         "coroutine.resume(co) error(select(2, coroutine.resume(co))) }%",
     ),
     "lua lifts the hook": ("lua", "%{ if debug then debug.sethook() end while true do end }%"),
+    "lua requires debug to lift the hook": (
+        "lua",
+        "%{ pcall(function() require('debug').sethook() end) while true do end }%",
+    ),
     "lua recursion": ("lua", "%{ local function f() return f() end f() }%"),
     "lua grows a table": ("lua", "%{ local t = {} for i = 1, 1e10 do t[i] = i end }%"),
     "lua grows a string": ("lua", "%{ local s = 'x' while true do s = s .. s end }%"),
@@ -120,3 +124,37 @@ def test_a_javascript_template_still_reads_its_fields_and_files(tmp_path: Path) 
         templates.evaluate_template(
             "javascript", "%< throw new Error('boom') >%", {}, {}, "B.proto"
         )
+
+
+def test_what_a_lua_template_requires_is_the_sandbox_s_too(tmp_path: Path) -> None:
+    # require hands out the real libraries unless the sandbox replaces them: io that writes,
+    # native libraries, files read unbounded.
+    target = tmp_path / "written.txt"
+    body = (
+        "%{ local f = require('io').open(fields.path.value, 'w') "
+        "if f then f:write('x') f:close() end }%"
+        "%{= tostring(package.loadlib) }%|%{= tostring(dofile) }%|%{= tostring(loadfile) }%"
+        "|%{= package.cpath }%|%{= require('debug').getinfo(1, 'S').short_src }%"
+        "|%{= tostring(require('debug').sethook) }%"
+    )
+    fields = {"path": {"value": str(target), "defaultValue": str(target)}}
+    out = templates.evaluate_template("lua", body, fields, {}, "Escape.proto")
+    assert out == "nil|nil|nil||proto|nil"
+    assert not target.exists()
+
+
+def test_a_lua_template_drawing_its_texture_with_lua_gd_runs(tmp_path: Path) -> None:
+    # RoboCup Junior's victims draw a letter into a PNG with lua-gd (bundled with Webots' Lua):
+    # the template runs; its image is drawn and saved nowhere.
+    body = (
+        "%{ local gd = require('gd') local im = gd.createTrueColor(128, 64) "
+        "local white = im:colorAllocate(255, 255, 255) im:filledRectangle(0, 0, 127, 63, white) "
+        "gd.fontCacheSetup() im:stringFT(im:colorAllocate(0, 0, 0), 'Arial', 96, 0, 18, 60, 'H') "
+        "local saved = im:png(fields.path.value) gd.fontCacheShutdown() }%"
+        "%{= im:sizeX() }%x%{= im:sizeY() }% %{= tostring(saved) }%"
+    )
+    target = tmp_path / "victim.png"
+    fields = {"path": {"value": str(target), "defaultValue": str(target)}}
+    out = templates.evaluate_template("lua", body, fields, {}, "Victim.proto")
+    assert out == "128x64 false"
+    assert not target.exists()

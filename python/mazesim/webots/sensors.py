@@ -617,9 +617,11 @@ class RayDistanceSensor(DistanceSensor):
     def _read_floor(self) -> float:
         """A sensor pointed at the floor (a ground sensor of the ``groundSensorsSlot``): its ray
         meets the floor ``z / sin(pitch)`` away, ahead of the mount by ``z / tan(pitch)``; an
-        infra-red sensor's distance is divided by the floor's reflectance there, as for walls."""
+        infra-red sensor's distance is divided by the floor's reflectance there, as for walls.
+        The height is the mount's as Webots has it (the R2022a E-puck's slot holds a sensor
+        0.3 mm up); one on or below the floor's plane reads it from a micrometre."""
         mount = self._mount
-        height = max(mount.z, 0.0005)
+        height = max(mount.z, 1e-6)
         sine = math.sin(mount.pitch)
         ahead = height * math.cos(mount.pitch) / sine
         x, y, heading = mount.world_pose(self._simulation.simulator.pose)

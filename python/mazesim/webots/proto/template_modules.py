@@ -213,6 +213,38 @@ function m.circle(radius, div, c, shift)
   return points
 end
 return m""",
+    # lua-gd, which Webots' Lua bundles for templates that draw a texture (RoboCup Junior's
+    # victims write a letter into a PNG): its images here draw and save nothing, so such a
+    # template runs and its texture file is missing.
+    "gd": """local m, image = {}, {}
+image.__index = image
+function image.colorAllocate() return 0 end
+function image.colorAllocateAlpha() return 0 end
+function image.colorResolve() return 0 end
+function image.filledRectangle() end
+function image.rectangle() end
+function image.filledEllipse() end
+function image.line() end
+function image.setPixel() end
+function image.fill() end
+function image.stringFT() return {0, 0, 0, 0, 0, 0, 0, 0} end
+function image.string() end
+function image.copy() end
+function image.copyResampled() end
+function image.saveAlpha() end
+function image.png() return false end
+function image.jpeg() return false end
+function image.gif() return false end
+function image.sizeXY(im) return im.width, im.height end
+function image.sizeX(im) return im.width end
+function image.sizeY(im) return im.height end
+local function create(width, height) return setmetatable({width = width, height = height}, image) end
+m.create, m.createTrueColor, m.createPalette = create, create, create
+function m.createFromPng() return nil end
+function m.createFromJpeg() return nil end
+function m.fontCacheSetup() return true end
+function m.fontCacheShutdown() end
+return m""",
     "wbcore": """local m = {}
 function m.tablelength(t) local n = 0; for _ in pairs(t) do n = n + 1 end; return n end
 return m""",

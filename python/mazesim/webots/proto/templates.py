@@ -225,7 +225,10 @@ def _read_text(path: Any) -> str:
 #: Webots' Lua has io and os; here ``io.open`` reads a regular file through the package's
 #: bounded reader (never a FIFO or a device), writes nothing, and nothing is run. Every
 #: coroutine runs under the same clock hook as the main chunk; ``debug`` is then taken away so
-#: a template cannot lift the hook.
+#: a template cannot lift the hook, and ``require`` hands out the same sandboxed ``io``, a
+#: ``debug`` of ``getinfo`` alone (a template names its texture files by its source) and no
+#: native library (``package.loadlib`` and the C searchers are gone; ``dofile`` and
+#: ``loadfile``, which read any file unbounded, too).
 _LUA_SANDBOX = """
 function(read_text, seconds, every, pulse)
   local clock, sethook, create, wrap = os.clock, debug.sethook, coroutine.create, coroutine.wrap
@@ -280,6 +283,12 @@ function(read_text, seconds, every, pulse)
   end}
   print = function() end
   os.execute = nil; os.remove = nil; os.rename = nil; os.exit = nil; os.tmpname = nil
+  -- What require hands out is the sandbox's too: no native library, no real io or debug.
+  package.loaded.io = io
+  package.loaded.debug = {getinfo = function() return {source = "=proto", short_src = "proto"} end}
+  package.loadlib = nil; package.cpath = ""
+  package.searchers[3] = nil; package.searchers[4] = nil
+  dofile = nil; loadfile = nil
   debug = nil
 end
 """
