@@ -85,7 +85,8 @@ def test_a_negative_step_is_an_unsigned_duration_that_lasts_to_the_runs_end(
         seconds=0.5,
     )
     assert (run.exit_status, run.error, run.steps) == (0, "", 16)
-    assert out == ["first 0", "negative -1 at 0.512", "after -1"]
+    # The step after the one that returned -1 ends the controller, as in Webots.
+    assert out == ["first 0", "negative -1 at 0.512"]
     assert err == []
 
 
@@ -182,3 +183,22 @@ def test_the_library_knows_the_most_bytes_a_call_carries() -> None:
     header = (CAPI / "src" / "link.h").read_text()
     assert "#define LINK_MAX_VALUE_BYTES (1 << 26)" in header
     assert native_link.MAX_VALUE_BYTES == 1 << 26
+
+
+def test_a_step_after_the_one_that_returned_minus_1_ends_the_controller(
+    tmp_path: Path, capfd: pytest.CaptureFixture[str]
+) -> None:
+    # Webots' robot.c: once Webots quits the controller, wb_robot_step returns -1, and the
+    # next call exits (EXIT_SUCCESS). A controller looping on without looking at -1 (an
+    # evolutionary supervisor that reloads the world from its loop) stops there, rather than
+    # calling on into the world for a second of wall-clock time.
+    run, out, err = run_c(
+        capfd,
+        tmp_path,
+        "  for (int count = 1;; count++)\n"
+        '    if (wb_robot_step(32) == -1) printf("over at call %d\\n", count);',
+        seconds=0.5,
+    )
+    assert out == ["over at call 17"], "16 steps of 32 ms in 0.5 s, then -1 once"
+    assert (run.exit_status, run.error, run.stopped) == (0, "", False)
+    assert err == []

@@ -171,7 +171,9 @@ def test_the_sampling_period_holds_packets_until_it_ends(
     assert receiver.getBytes() == b"\x01\x02"
 
 
-def test_a_disabled_receiver_hears_nothing_and_buffers_overflow_by_losing_packets() -> None:
+def test_a_disabled_receiver_hears_nothing_and_buffers_overflow_by_losing_packets(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
     pair = RadioPair()
     basic = int(pair.robots[1].basic_time_step_ms)
     emitter = Emitter("emitter", pair.robots[0])
@@ -179,9 +181,16 @@ def test_a_disabled_receiver_hears_nothing_and_buffers_overflow_by_losing_packet
     pair.receivers.append(receiver)
     emitter.send("lost")
     pair.step()
+    # Webots' receiver.c: the queue of a disabled receiver is read with its message.
+    assert receiver.getQueueLength() == 0
+    assert capsys.readouterr().err == (
+        "Error: wb_receiver_get_queue_length() called for a disabled device! "
+        "Please use: wb_receiver_enable().\n"
+    )
     receiver.enable(basic)
     pair.step()
     assert receiver.getQueueLength() == 0, "sent while the receiver was disabled"
+    assert capsys.readouterr().err == "", "enabled: no message"
     for word in ("abc", "def", "ghi"):
         emitter.send(word)
     pair.step()

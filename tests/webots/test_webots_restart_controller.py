@@ -163,3 +163,50 @@ def test_a_written_controller_field_names_the_controller_that_starts(
     first = "given" if given_by in ("worker", "WORKER") else "first"
     assert starts == [[first, 0.0], [expected, pytest.approx(10 * STEP_S)]]
     assert worker.controller is not None and worker.controller.endswith(f"{expected}.py")
+
+
+#: Two e-pucks whose customData the file gives, and a supervisor that writes both fields, then
+#: restarts one's controller and switches the other's.
+CUSTOM_WORLD = """#VRML_SIM R2025a utf8
+WorldInfo { basicTimeStep 32 }
+DEF R1 E-puck { translation -0.2 0 0 name "r1" controller "reader" customData "file1" }
+DEF R2 E-puck { translation 0.2 0 0 name "r2" controller "reader" customData "file2" }
+Robot { name "boss" controller "writer" supervisor TRUE }
+"""
+WRITER = """from controller import Supervisor
+
+boss = Supervisor()
+step = int(boss.getBasicTimeStep())
+for count in range(1, 8):
+    boss.step(step)
+    if count == 2:
+        boss.getFromDef("R1").getField("customData").setSFString("new1")
+        boss.getFromDef("R2").getField("customData").setSFString("new2")
+    if count == 5:
+        boss.getFromDef("R1").restartController()
+        boss.getFromDef("R2").getField("controller").setSFString("other")
+"""
+READER = """from controller import Robot
+
+robot = Robot()
+print(f"{robot.getName()} starts at {robot.getTime():.3f} with {robot.getCustomData()}")
+while robot.step(int(robot.getBasicTimeStep())) != -1:
+    pass
+"""
+
+
+def test_a_controller_started_while_the_world_runs_reads_the_custom_data_as_it_is_then(
+    tmp_path: Path, capfd: pytest.CaptureFixture[str]
+) -> None:
+    # Webots hands a starting controller its robot's customData field as it is (WbRobot's
+    # configure message), not as the file wrote it.
+    sources = {"writer": WRITER, "reader": READER, "other": READER}
+    world = project_of(tmp_path, "custom.wbt", CUSTOM_WORLD, sources)
+    run_world(str(world), seconds=0.3, noise=False)
+    starts = sorted(x for x in capfd.readouterr().out.splitlines() if " starts at " in x)
+    assert starts == [
+        "r1 starts at 0.000 with file1",
+        "r1 starts at 0.160 with new1",
+        "r2 starts at 0.000 with file2",
+        "r2 starts at 0.160 with new2",
+    ]

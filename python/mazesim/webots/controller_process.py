@@ -93,6 +93,10 @@ class ControllerJob:
             (:mod:`mazesim.webots.scene_edits`; ``robot_line`` is a line of it), else None: the
             file's text.
         keys: The keyboard script its ``Keyboard`` plays, or None: no key is pressed.
+        custom_data: The robot's ``customData`` field as the run has left it, for a controller
+            started while the world runs (a restart, a robot imported) after a write of the
+            field (by a supervisor, or the robot's former controller); None: the file's. Webots
+            hands a starting controller the field's value at that time.
     """
 
     world_path: str
@@ -105,6 +109,7 @@ class ControllerJob:
     prepared: PreparedController | None = None
     world_text: str | None = None
     keys: KeyScript | None = None
+    custom_data: str | None = None
 
 
 @dataclass(frozen=True)
@@ -369,6 +374,8 @@ def controller_main(
     line = report.get("robot_line")
     y_up = body_y_up(report.get("robots") or [], line)
     scene = read_scene(text, report.get("robot_model"), line, y_up)
+    if job.custom_data is not None:
+        scene.robot_custom_data = job.custom_data
     summary = ControllerSummary(1, "", False, False, False, 0)
     try:
         run = run_controller(

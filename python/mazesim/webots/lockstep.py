@@ -819,7 +819,8 @@ def run_world(
             return run, None
         _, _, ready = _say_what_is_missing([run])
         done = replace(ready[job.controller], virtual_display=False)
-        return run, replace(job, prepared=done, world_text=fleet.text)
+        written = fleet.custom_data_field(index)
+        return run, replace(job, prepared=done, world_text=fleet.text, custom_data=written)
 
     # The walls (where a supervisor moved, imported or removed them), the robots' bodies and
     # the movable bodies stop infra-red packets.

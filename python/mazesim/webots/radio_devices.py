@@ -320,7 +320,10 @@ class Receiver(_Tuned, _Sensor):
         return self._queue[0]
 
     def getQueueLength(self) -> int:
-        """The number of packets in the queue."""
+        """The number of packets in the queue; a disabled receiver's (0 if it never listened)
+        with Webots' message for a disabled device (the usual sign of a forgotten
+        ``enable``)."""
+        self._warn_disabled("get_queue_length")
         return len(self._queued())
 
     def nextPacket(self) -> None:

@@ -360,7 +360,13 @@ class Node(NotSimulated):
             )
             return composed(start, self._on_body[0])
         own = self._simulation().robot_index if self._robot else self._fleet_index
-        for index, robot in enumerate(report.get("robots") or []):
+        fleet = getattr(self._simulation(), "fleet", None)
+        if fleet is not None and own is not None:
+            # Every robot of a world run, one a supervisor imported while it runs too.
+            robots = [(own, fleet.robots_of([own])[0])]
+        else:
+            robots = list(enumerate(report.get("robots") or []))
+        for index, robot in robots:
             if robot.get("index", index) == own and robot.get("pose") is not None:
                 x, y, yaw = robot["pose"]
                 return float(x), float(y), float(yaw)

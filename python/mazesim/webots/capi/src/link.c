@@ -299,6 +299,11 @@ int wb_robot_init(void) {
    native_controller.py), without a message. */
 int wb_robot_step(int duration) {
   link_start();
+  /* Webots' library ends the controller at its first step after the one that returned -1
+     (robot.c, WEBOTS_EXIT_NOW: exit(EXIT_SUCCESS)), so that one looping on without looking at
+     -1 does not call on into a world whose run is over. */
+  if (run_over)
+    exit(EXIT_SUCCESS);
   link_lock();
   int32_t header[3] = {LINK_STEP, duration, pending_count};
   send_all(header, sizeof header);
