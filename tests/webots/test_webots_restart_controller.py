@@ -173,7 +173,7 @@ DEF R1 E-puck { translation -0.2 0 0 name "r1" controller "reader" customData "f
 DEF R2 E-puck { translation 0.2 0 0 name "r2" controller "reader" customData "file2" }
 Robot { name "boss" controller "writer" supervisor TRUE }
 """
-WRITER = """from controller import Supervisor
+CUSTOM_WRITER = """from controller import Supervisor
 
 boss = Supervisor()
 step = int(boss.getBasicTimeStep())
@@ -186,7 +186,7 @@ for count in range(1, 8):
         boss.getFromDef("R1").restartController()
         boss.getFromDef("R2").getField("controller").setSFString("other")
 """
-READER = """from controller import Robot
+CUSTOM_READER = """from controller import Robot
 
 robot = Robot()
 print(f"{robot.getName()} starts at {robot.getTime():.3f} with {robot.getCustomData()}")
@@ -200,7 +200,7 @@ def test_a_controller_started_while_the_world_runs_reads_the_custom_data_as_it_i
 ) -> None:
     # Webots hands a starting controller its robot's customData field as it is (WbRobot's
     # configure message), not as the file wrote it.
-    sources = {"writer": WRITER, "reader": READER, "other": READER}
+    sources = {"writer": CUSTOM_WRITER, "reader": CUSTOM_READER, "other": CUSTOM_READER}
     world = project_of(tmp_path, "custom.wbt", CUSTOM_WORLD, sources)
     run_world(str(world), seconds=0.3, noise=False)
     starts = sorted(x for x in capfd.readouterr().out.splitlines() if " starts at " in x)

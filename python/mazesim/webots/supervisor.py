@@ -48,6 +48,7 @@ from mazesim.webots.importer import E_PUCK_MODELS
 from mazesim.webots.inert import ContactPoint
 from mazesim.webots.lights import LIGHT_TYPES
 from mazesim.webots.movie import MovieRecorder
+from mazesim.webots.name_clash import default_name, unique_names
 from mazesim.webots.node_types import NODE_TYPES
 from mazesim.webots.proto_fields import declared_fields
 from mazesim.webots.radio_devices import E_PUCK_CHANNEL
@@ -856,6 +857,12 @@ class Supervisor(Robot):
             )
             return
         place = None if parent is self._root else (parent._line, parent._world_frame())
+        if parent is self._root:
+            # Webots renames an imported Solid whose name a top-level sibling has.
+            taken = [
+                n for c in children if (n := c._strings.get("name") or default_name(c._type_name))
+            ]
+            text = unique_names(text, taken)
         try:
             change = scene_edits(self._simulation).import_node(text, place)
         except MazesimError as refused:
