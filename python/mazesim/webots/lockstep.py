@@ -1477,9 +1477,10 @@ def _step_world(
     radio: Radio,
     runs: list[RobotRun],
 ) -> None:
-    """One basic step of every robot: the radio's packets, then the motion."""
+    """One basic step of every robot: the motion, then the radio's packets, which each
+    receiver measures (range, cone, line of sight, direction and strength) where the robots
+    stand after the step's motion, as Webots' ``WbReceiver::postPhysicsStep`` does."""
     here = {i: s for i, s in enumerate(simulators) if not isinstance(s, RemovedRobot)}
-    radio.transmit({i: tuple(float(v) for v in s.pose) for i, s in here.items()})  # type: ignore[misc]
     views = [(i, s) for i, s in enumerate(simulators) if isinstance(s, RobotView)]
     if views:
         commands = np.array([wheels.get(i, (0.0, 0.0)) for i, _ in views], dtype=np.float64)
@@ -1487,6 +1488,7 @@ def _step_world(
     for index, simulator in here.items():
         if not isinstance(simulator, RobotView):
             simulator.step(*wheels.get(index, (0.0, 0.0)))
+    radio.transmit({i: tuple(float(v) for v in s.pose) for i, s in here.items()})  # type: ignore[misc]
     for index, simulator in here.items():
         x, y, _ = simulator.pose
         runs[index].xs.append(float(x))

@@ -2,10 +2,10 @@
 
 A :class:`Radio` is the medium of one world. Emitters :meth:`~Radio.send` packets; once per basic
 time step the process that owns the world calls :meth:`~Radio.transmit` with every robot's
-pose, before the step, and each packet sent since the last transmission reaches the listening
-receivers of the other robots: those of the emitter's type ("radio", "serial" or "infra-red"),
-on its channel (or listening to all, channel -1; a packet sent on channel -1 reaches every
-channel) and within its range (-1: no limit). Receivers
+pose after the step's motion, and each packet sent since the last transmission reaches the
+listening receivers of the other robots: those of the emitter's type ("radio", "serial" or
+"infra-red"), on its channel (or listening to all, channel -1; a packet sent on channel -1
+reaches every channel) and within its range (-1: no limit). Receivers
 :meth:`~Radio.collect` what arrived at their next sampling instant. The rules follow Webots'
 reference manual (https://cyberbotics.com/doc/reference/emitter and
 https://cyberbotics.com/doc/reference/receiver):
@@ -19,7 +19,10 @@ https://cyberbotics.com/doc/reference/receiver):
   so a "radio" receiver hears neither a "serial" nor an "infra-red" emitter; a type Webots does
   not know counts as "radio", as Webots takes it after its warning;
 - "A value of -1 (the default) for range is considered to be an infinite range"; the distance
-  is the one between the two robots' centres at the time of sending;
+  is the one between the two robots' centres where they stand after the step that delivers the
+  packet, as Webots' ``WbReceiver::postPhysicsStep`` checks the range and cones and measures the
+  direction and strength after that step's physics (a world run calls :meth:`~Radio.transmit`
+  with the poses after the step's motion);
 - the signal strength is "the inverse of the distance between the emitter and the receiver
   squared", the emitter's direction "a normalized (length=1) vector that indicates the direction
   of the emitter with respect to the receiver's coordinate system" (x forward, y left, z up);
@@ -33,7 +36,7 @@ https://cyberbotics.com/doc/reference/receiver):
   reaches a receiver only when the segment between the two robots' centres, seen from above,
   meets none of the obstacles of the radio's :attr:`~Radio.sight` (the world's walls where a
   supervisor moved them, the other robots' bodies and the movable bodies, all as they stand
-  when the packet is sent);
+  after the step that delivers the packet);
 - an infra-red Emitter's ``aperture`` is the "opening angle of the emission cone (in radians);
   for "infra-red" only", an infra-red Receiver's that of its reception cone, -1 (the default)
   all around: such a packet reaches a receiver only when the receiving robot's centre lies
@@ -97,8 +100,8 @@ class Packet:
     Attributes:
         data: The bytes sent.
         channel: The channel it was sent on.
-        signal_strength: 1 / r^2 for the distance r (metres) between the robots when it was
-            sent; infinite at distance 0.
+        signal_strength: 1 / r^2 for the distance r (metres) between the robots as it
+            arrived; infinite at distance 0.
         direction: Unit vector toward the emitter in the receiving robot's frame (x forward, y left,
             z up).
     """
@@ -211,7 +214,8 @@ class Radio:
         """Delivers the packets sent since the last call to the listening receivers they reach.
 
         Args:
-            poses: Each robot's x, y (metres) and yaw (radians) when the packets were sent.
+            poses: Each robot's x, y (metres) and yaw (radians) where it stands as the packets
+                arrive (after the step's motion).
         """
         sent = sorted(self._in_transit, key=lambda p: (p.robot, p.order))
         self._in_transit = []

@@ -286,8 +286,6 @@ class RobotSimulation:
         observers (:func:`observing_steps`) the state before it."""
         for observer in _observers:
             observer(self, left, right)
-        if self.owns_world:
-            self.radio.transmit({self.robot_index: self.simulator.pose})
         if self.traction is not None:
             left, right = self.traction.drive(left, right, self.basic_time_step_ms / 1000.0)
         holds = getattr(self.simulator, "hold_wheel_commands", None)
@@ -299,6 +297,9 @@ class RobotSimulation:
         if self.simulator.step(left, right) is True:
             self.world_over = True
             return
+        if self.owns_world:
+            # Packets arrive where the robots stand after the step (see mazesim.webots.radio).
+            self.radio.transmit({self.robot_index: self.simulator.pose})
         self.steps += 1
         resets = self.last_reset.count
         if self.fleet is not None:
