@@ -25,6 +25,9 @@ def test_names_taken_get_the_first_free_index_and_others_stay() -> None:
     )
     assert unique_names('E-puck { name "a" }', ["b"]) == 'E-puck { name "a" }'
     assert unique_names("E-puck {", ["e-puck"]) == "E-puck {", "not nodes: the import says so"
+    # A name's escapes are kept as written, not escaped again.
+    assert unique_names('Solid { name "a\\"b" }', ['a\\"b']) == 'Solid { name "a\\"b(1)" }'
+    assert unique_names("DEF X Solid{}", ["solid"]) == 'DEF X Solid{ name "solid(1)"}'
 
 
 WORLD = """#VRML_SIM R2023b utf8

@@ -15,7 +15,6 @@ its node's ``name`` field and the run's summary all have it.
 
 from __future__ import annotations
 
-import json
 import re
 from collections.abc import Iterable
 
@@ -80,7 +79,8 @@ def _renamed(name: str, names: set[str]) -> str:
 def _edit(text: str, node: Node, name: str, written: bool) -> tuple[int, int, str]:
     """The span of ``text`` to replace, and by what, to give ``node`` the ``name``: its
     ``name`` field's string, or a field written after its opening brace."""
-    quoted = json.dumps(name, ensure_ascii=False)
+    # Names are kept as the file writes them (escapes and all): quoted as they are.
+    quoted = f'"{name}"'
     if written:
         item = node.field("name")
         token = next(t for t in item.tokens if t.kind == "string") if item else None
