@@ -160,7 +160,8 @@ def import_wbt(
     basic_time_step_ms, warnings, one_controller_warnings (those of a run of one controller
     only), robot_model, robot_line, robot_profile, robots (every robot:
     pose, model, profile, controller, name, def_name, line, y_up), extension_devices,
-    floor_textures, wall_textures (urls, owner, red, colour, roughness, candidates),
+    missing_devices (the e-puck's own devices the robot's node lacks), floor_textures,
+    wall_textures (urls, owner, red, colour, roughness, candidates),
     floor_paint). `floor_images` maps texture files to (height, width) grey levels in [0, 1];
     `wall_colours` maps wall texture files to their images' mean (red, green, blue) in [0, 1];
     of several e-pucks, the first whose `controller` field is `controller` is the robot;

@@ -252,6 +252,7 @@ def test_cli_json_layout(tmp_path: Path) -> None:
         "robot_profile",
         "robots",
         "extension_devices",
+        "missing_devices",
         "floor_textures",
         "wall_textures",
         "floor_paint",

@@ -376,9 +376,7 @@ def test_the_robot_reports_its_controllers_name_and_arguments(tmp_path: Path) ->
     assert "not available" not in result.stderr
 
 
-def test_ground_sensors_without_the_module_are_given_with_webots_difference_said(
-    tmp_path: Path,
-) -> None:
+def test_ground_sensors_without_the_module_are_none_as_in_webots(tmp_path: Path) -> None:
     reads_gs0 = (
         "from controller import Robot\n"
         "robot = Robot()\n"
@@ -388,7 +386,8 @@ def test_ground_sensors_without_the_module_are_given_with_webots_difference_said
     )
     bare = "#VRML_SIM R2023b utf8\nRectangleArena { }\nE-puck { }\n"
     result = run_webots(tmp_path, reads_gs0, bare)
-    assert "gs0 found: True" in result.stdout
+    assert "gs0 found: False" in result.stdout
+    assert 'Device "gs0" was not found on robot "e-puck"' in result.stderr
     assert result.stderr.count("has no ground sensors module") == 1
     module = "groundSensorsSlot [ E-puckGroundSensors { } ]"
     equipped = bare.replace("E-puck { }", f"E-puck {{ {module} }}")

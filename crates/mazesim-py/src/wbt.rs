@@ -70,6 +70,7 @@ fn robot_and_floor(out: &Bound<'_, PyDict>, import: &WbtImport) -> PyResult<()> 
         d.set_item("fields", fields)
     })?;
     out.set_item("extension_devices", devices)?;
+    out.set_item("missing_devices", import.missing_devices.clone())?;
     let textures = dicts(py, &import.floor_textures, |d, texture| {
         d.set_item("urls", texture.urls.clone())?;
         d.set_item("owner", &texture.owner)?;
@@ -186,7 +187,7 @@ fn wall_colours(colours: Option<&Bound<'_, PyAny>>) -> PyResult<BTreeMap<String,
 /// reflectance), whether it is a `sphere` (a ball) and its `height`, and each obstacle with its `walls`, the first of its walls in the
 /// world and how many; `sensed_only` the obstacles only infra-red rays and cameras meet, as
 /// obstacles without owners, each with its `reflectance`),
-/// "warnings": [...], "one_controller_warnings": [...], "robot_model", "robot_line", "robot_profile", "extension_devices", "floor_textures",
+/// "warnings": [...], "one_controller_warnings": [...], "robot_model", "robot_line", "robot_profile", "extension_devices", "missing_devices", "floor_textures",
 /// "wall_textures", "floor_paint"}`, in metres and radians, world frame, z up.
 fn report<'py>(py: Python<'py>, import: &WbtImport) -> PyResult<Bound<'py, PyDict>> {
     let footprint = |d: &Bound<'py, PyDict>, obstacle: &Obstacle| -> PyResult<()> {

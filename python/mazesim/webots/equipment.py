@@ -403,6 +403,11 @@ class Equipment:
             Receiver("receiver", simulation, channel=_proto_channel(scene, "receiver_channel")),
             Speaker("speaker", simulation),
         ]
+        # Webots' getDevice finds only the devices the robot's node holds: a plain robot node
+        # (a custom robot taken for an e-puck) lacks those of the e-puck it has no node of, an
+        # E-puck without its ground sensors module its gs0..gs2.
+        lacked = set(simulation.report.get("missing_devices") or ())
+        devices = [device for device in devices if device.getName() not in lacked]
         own_nodes: set[int] = set()
         built: list[tuple[Mapping[str, Any], Device]] = []
         for entry in entries:

@@ -166,7 +166,10 @@ class ImportReport(TypedDict):
     type name of another robot, ``None`` without one); ``robot_line`` the line of its node in
     the file (``None`` without one); ``robot_profile`` the mazesim profile
     that simulates it (``"e-puck"`` or ``"e-puck2"``); ``robots`` every robot of the file
-    (see :class:`WorldRobot`); ``floor_paint`` the number of paint
+    (see :class:`WorldRobot`); ``missing_devices`` the e-puck's own devices (``ps0``,
+    ``gs0``, ``camera``...) the robot's node lacks, which Webots' ``getDevice`` does not find
+    (a plain robot node's missing children; an E-puck's ground sensors without their module);
+    ``floor_paint`` the number of paint
     rectangles the floor textures gave; ``bodies`` the movable bodies (``kind``, ``center``,
     ``size`` and ``yaw`` or ``radius``, ``mass`` in kg, floor ``friction``, ``owners`` and
     ``reflectance`` as an obstacle's, the ``colour`` a camera sees, whether it is a ``sphere``
@@ -193,6 +196,7 @@ class ImportReport(TypedDict):
     robot_profile: str
     robots: list[WorldRobot]
     extension_devices: list[ExtensionDevice]
+    missing_devices: list[str]
     floor_textures: list[FloorTexture]
     wall_textures: list[WallTexture]
     floor_paint: int

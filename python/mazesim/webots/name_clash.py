@@ -21,11 +21,9 @@ from collections.abc import Iterable
 from mazesim.errors import MazesimError
 from mazesim.webots.proto.syntax import Field, Node, first_value, parse_nodes
 from mazesim.webots.proto_fields import declared_fields
+from mazesim.webots.scene import BASE_NAMES
 
 __all__ = ["default_name", "unique_names"]
-
-#: The ``name`` a base node type's Solid has when its node writes none (reference manual).
-BASE_NAMES = {"Solid": "solid", "Robot": "robot"}
 
 
 def default_name(type_name: str) -> str | None:

@@ -20,6 +20,7 @@ from mazesim.webots.devices import (
 from mazesim.webots.equipment import Equipment
 from mazesim.webots.keyboard import Joystick, Keyboard, Mouse
 from mazesim.webots.node_types import node_type
+from mazesim.webots.scene import EPUCK_TYPES
 from mazesim.webots.termination import GRACE_SECONDS, unwind_controller
 from mazesim.webots.webots_api import NotSimulated
 
@@ -129,7 +130,6 @@ class Robot(NotSimulated):
     _custom_data: str
     #: The number of the last supervisor's write of ``customData`` read (0: none).
     _custom_data_written = 0
-    _warned_ground_module = False
     #: The names ``getDevice`` found no device of, in the order asked.
     _missing_devices: tuple[str, ...] = ()
     #: The battery sensor's sampling period (ms), in basic steps, and the step it was enabled.
@@ -144,6 +144,8 @@ class Robot(NotSimulated):
             InvalidArgumentError: No simulation was prepared (see :func:`mazesim.webots.prepare`).
         """
         simulation = _simulations.current()
+        #: The e-puck device names the node lacks that a hint was printed for.
+        self._warned_lacked: set[str] = set()
         earlier = Robot.created
         if earlier is not None and earlier._simulation is simulation:
             print(
@@ -370,18 +372,6 @@ class Robot(NotSimulated):
     def getDevice(self, name: str) -> Any:
         """The device of that name, or None (with Webots' message) if the robot has none."""
         device = self._equipment.devices.get(str(name))
-        if (
-            str(name) in GROUND_SENSOR_NAMES
-            and self._simulation.scene.ground_sensors_module is False
-            and not self._warned_ground_module
-        ):
-            self._warned_ground_module = True
-            print(
-                f"mazesim: warning: the world's E-puck has no ground sensors module "
-                f"(groundSensorsSlot [ E-puckGroundSensors {{ }} ]): in Webots "
-                f'getDevice("{name}") returns None; mazesim gives the sensors',
-                file=sys.stderr,
-            )
         if device is None:
             self._missing_devices = (*self._missing_devices, str(name))
             shown = _shortened(str(name))
@@ -394,7 +384,31 @@ class Robot(NotSimulated):
                     + ", ".join(repr(found) for found in similar),
                     file=sys.stderr,
                 )
+            if hint := self._lacked_hint(str(name)):
+                print(hint, file=sys.stderr)
         return device
+
+    def _lacked_hint(self, name: str) -> str:
+        """What mazesim says, once per name, when a controller asks for a device of the e-puck
+        that the robot's node does not hold (the import's ``missing_devices``): Webots finds
+        only the devices a node holds; empty for any other name, or said before (the ground
+        sensors' module once for the three)."""
+        lacked = self._simulation.report.get("missing_devices") or []
+        module = name in GROUND_SENSOR_NAMES and self._simulation.scene.robot_type in EPUCK_TYPES
+        said = "gs0..gs2" if module else name
+        if name not in lacked or said in self._warned_lacked:
+            return ""
+        self._warned_lacked.add(said)
+        if module:
+            return (
+                "mazesim: the world's E-puck has no ground sensors module: its node needs "
+                "groundSensorsSlot [ E-puckGroundSensors { } ] for gs0..gs2, in Webots as here"
+            )
+        return (
+            f"mazesim: the node of robot {_shown(self.getName())} holds no device "
+            f"{_shortened(repr(name))} (an E-puck PROTO would have one): Webots finds only the "
+            "devices a robot's node holds"
+        )
 
     def _missing_devices_line(self) -> str:
         """The line that ends a controller's run stopped by a call on the None ``getDevice``

@@ -43,6 +43,7 @@ __all__ = [
     "CHILDREN_TYPES",
     "GROUPING_TYPES",
     "Row",
+    "BASE_NAMES",
     "Scene",
     "SceneNode",
     "body_y_up",
@@ -55,6 +56,8 @@ __all__ = [
 Row = tuple[float, float, float]
 
 
+#: The ``name`` a base node type's Solid has when its node writes none (reference manual).
+BASE_NAMES = {"Solid": "solid", "Robot": "robot"}
 #: Node types that are robots (``DifferentialWheels``: Webots 6-7's wheeled robot).
 ROBOT_TYPES = {"E-puck", "Robot", "DifferentialWheels", "e-puck2", "Epuck", "EPuck", "E-puck2"}
 #: The E-puck PROTOs, whose hidden joint positions are their wheels'.
@@ -160,7 +163,9 @@ class Scene:
             E-puck PROTO, ``DifferentialWheels``) and leaves ``supervisor`` FALSE
             (:mod:`mazesim.webots.supervisor_refusal`); False without a robot node.
         synchronization: The robot's ``synchronization`` field (Webots' default TRUE).
-        robot_name: The robot's ``name`` field (Webots' default for the E-puck, ``"e-puck"``).
+        robot_name: The robot's ``name`` field, or its node type's default (the E-puck's
+            ``"e-puck"``, a plain Robot's ``"robot"``).
+        robot_type: The robot node's type (``E-puck``, ``Robot``...); None without one.
         robot_custom_data: The robot's ``customData`` field.
         robot_battery: The robot's ``battery`` field: its energy (J), the most it holds (J)
             and its recharge speed (W); empty without a battery (Webots' default).
@@ -184,9 +189,6 @@ class Scene:
             grouping node with its own ``children``.
         nue: Whether the file uses Webots' old NUE frame (y up): before R2022a, or
             ``coordinateSystem "NUE"``; a GPS then reads in that frame.
-        ground_sensors_module: Whether the world's E-puck carries Webots' ground sensors
-            module (``E-puckGroundSensors`` in its ``groundSensorsSlot``), without which
-            Webots' e-puck has no ``gs0``..``gs2``; None for a robot that is no E-puck node.
         wheel_positions: The left and right wheel joints' positions (rad) a world saved after
             a run holds (the E-puck's ``hidden position_0_0`` and ``position_0_1``): where
             Webots restores them, so where its wheel sensors start; 0 otherwise.
@@ -239,6 +241,7 @@ class Scene:
     supervisor_refused: bool = False
     synchronization: bool = True
     robot_name: str = "e-puck"
+    robot_type: str | None = None
     robot_custom_data: str = ""
     robot_battery: tuple[float, ...] = ()
     robot_cpu_consumption: float = 10.0
@@ -257,7 +260,6 @@ class Scene:
     wheels_node: WheelsNode | None = None
     traction_version: str | None = None
     infrared_elevation: float = 0.0
-    ground_sensors_module: bool | None = None
     lights: list[Light] | None = None
     light_sources: list[LightSource] | None = None
     nodes: list[SceneNode] = field(default_factory=list)
@@ -374,7 +376,9 @@ def _scene(
         own = [robot]
         inside = list(nodes_in_order(f for item in robot.fields for f in item.nodes))
         scene.robot_def = robot.def_name
-        scene.robot_name = first_value(own, "name", Field.string) or scene.robot_name
+        scene.robot_type = robot.type_name
+        named = first_value(own, "name", Field.string)
+        scene.robot_name = named or BASE_NAMES.get(robot.type_name) or scene.robot_name
         scene.robot_custom_data = first_value(own, "customData", Field.string) or ""
         scene.robot_battery = first_value(own, "battery", _numbers) or ()
         cpu = first_value(own, "cpuConsumption", lambda f: f.numbers(1))
@@ -387,7 +391,6 @@ def _scene(
         if robot.type_name in EPUCK_TYPES:
             # The E-puck PROTO's first HingeJoint is its left wheel's, the second its right's.
             scene.wheel_positions = (_saved_wheel(robot, 0), _saved_wheel(robot, 1))
-            scene.ground_sensors_module = any(n.type_name in _GROUND_SENSORS for n in inside)
         else:
             scene.sensor_tables, scene.malformed_tables = _sensor_tables(text, inside)
             placed = _sensor_poses(robot, scene.body_y_up)
@@ -451,10 +454,6 @@ def _camera_turn(rotation: Sequence[float], y_up: bool) -> tuple[float, float]:
 
 #: The fields of a ``DifferentialWheels`` node its controller's side reads.
 _WHEELS_FIELDS = ("speedUnit", "maxSpeed", "encoderResolution", "encoderNoise")
-
-#: The nodes of Webots' ground sensors module of the E-puck (its gs0..gs2), in its
-#: groundSensorsSlot.
-_GROUND_SENSORS = {"E-puckGroundSensors", "EPuck_GroundSensorsModule"}
 
 
 def _leading(count: int) -> Callable[[Field], tuple[float, ...] | None]:

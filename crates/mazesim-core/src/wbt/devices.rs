@@ -47,6 +47,9 @@ const BUILT_IN_EXTENSIONS: &[&str] = &["E-puckGroundSensors", "EPuck_GroundSenso
 /// (after `led0`..`led9`).
 const PI_PUCK: &str = "Pi-puck";
 const PI_PUCK_LEDS: [&str; 3] = ["pi-puck led 0", "pi-puck led 1", "pi-puck led 2"];
+/// The ground sensors of the E-puck's ground sensors module (`BUILT_IN_EXTENSIONS`): an
+/// E-puck without the module has none.
+const GROUND_SENSORS: &[&str] = &["gs0", "gs1", "gs2"];
 /// The devices of mazesim's e-puck: a plain `Robot` e-puck saved expanded lists them among its
 /// children, and they are simulated as the e-puck's own.
 const BUILT_IN_NAMES: &[&str] = &[
@@ -361,6 +364,7 @@ impl<'d> Importer<'d> {
                 if !(e_puck && BUILT_IN_NAMES.contains(&name.as_str())) {
                     self.device_proto(node, "children", &frame, proto);
                 }
+                self.held_devices.push(name);
                 continue;
             }
             let local = if JOINTS.contains(&kind) {
@@ -369,13 +373,22 @@ impl<'d> Importer<'d> {
                 self.local_frame(node, [0.0; 3])
             };
             let frame = frame.then(&local);
-            if let Some(&(_, default_name)) = DEVICE_TYPES.iter().find(|(t, _)| *t == kind) {
+            let device = DEVICE_TYPES.iter().find(|(t, _)| *t == kind);
+            if device.is_none() {
+                // A PROTO mazesim does not read (Webots 6's `EPuck_DistanceSensor`) named as
+                // one of the e-puck's devices holds that device.
+                let named = self.strings(node, "name").first().cloned();
+                self.held_devices
+                    .extend(named.filter(|n| BUILT_IN_NAMES.contains(&n.as_str())));
+            }
+            if let Some(&(_, default_name)) = device {
                 let name = self.strings(node, "name").first().cloned();
                 let name = name.unwrap_or_else(|| default_name.to_string());
                 let own_fields = OWN_FIELD_TYPES.contains(&kind);
                 if !(e_puck && !own_fields && BUILT_IN_NAMES.contains(&name.as_str())) {
                     self.device(node, "children", &frame, default_name);
                 }
+                self.held_devices.push(name);
             }
             let mut below: Vec<&'d Node> = Vec::new();
             for field in ["children", "device", "endPoint"] {
@@ -387,12 +400,32 @@ impl<'d> Importer<'d> {
         }
     }
 
+    /// The e-puck's own devices (`BUILT_IN_NAMES`) the run's robot's node does not hold, once
+    /// its slots and children are listed: for a plain robot node (`plain`: an e-puck saved
+    /// expanded, a project's robot, a robot that is no e-puck) each one not among its devices;
+    /// for an E-puck PROTO node, which holds the others, its ground sensors unless a ground
+    /// sensors module is in a slot. Webots' `getDevice` finds none of them.
+    pub fn devices_not_held(&self, plain: bool) -> Vec<String> {
+        let names: &[&str] = if plain {
+            BUILT_IN_NAMES
+        } else {
+            GROUND_SENSORS
+        };
+        names
+            .iter()
+            .filter(|name| !self.held_devices.iter().any(|held| held == *name))
+            .map(|name| (*name).to_string())
+            .collect()
+    }
+
     fn slot_node(&mut self, node: &'d Node, slot: &str, frame: &Frame, depth: usize) {
         if !self.enter(depth) {
             return;
         }
         let kind = node.type_name.as_str();
         if BUILT_IN_EXTENSIONS.contains(&kind) {
+            let held = GROUND_SENSORS.iter().map(|name| (*name).to_string());
+            self.held_devices.extend(held);
             return;
         }
         if kind == PI_PUCK {
@@ -526,6 +559,68 @@ impl<'d> Importer<'d> {
 #[cfg(test)]
 mod tests {
     use crate::wbt::WbtImport;
+
+    fn missing(text: &str) -> Vec<String> {
+        let w = WbtImport::from_text(text, "test.wbt").unwrap_or_else(|e| panic!("{e}"));
+        w.missing_devices
+    }
+
+    #[test]
+    fn a_robot_node_lacks_the_e_puck_devices_it_holds_no_node_of() {
+        // A custom robot taken for an e-puck: two wheel motors, one LED, no sensors.
+        let lacking = missing(
+            "#VRML_SIM R2023b utf8\nRobot { children [\n\
+             HingeJoint { device [ RotationalMotor { name \"left wheel motor\" } ] }\n\
+             HingeJoint { device [ RotationalMotor { name \"right wheel motor\" } ] }\n\
+             Pose { children [ LED { name \"led0\" } ] } ] }\n",
+        );
+        for held in ["left wheel motor", "right wheel motor", "led0"] {
+            assert!(
+                !lacking.iter().any(|name| name == held),
+                "{held}: {lacking:?}"
+            );
+        }
+        for lacked in [
+            "ps0",
+            "ps7",
+            "gs0",
+            "camera",
+            "left wheel sensor",
+            "speaker",
+            "led1",
+        ] {
+            assert!(
+                lacking.iter().any(|name| name == lacked),
+                "{lacked}: {lacking:?}"
+            );
+        }
+        // Webots 6's e-puck: a DifferentialWheels (no wheel motors) whose sensors are PROTOs
+        // mazesim does not read, named as the e-puck's.
+        let old = missing(
+            "#VRML_SIM V6.0 utf8\nDifferentialWheels { name \"e-puck\" children [\n\
+             EPuck_DistanceSensor { name \"ps0\" } Camera { } ] }\n",
+        );
+        assert!(
+            !old.iter().any(|name| name == "ps0" || name == "camera"),
+            "{old:?}"
+        );
+        assert!(old.iter().any(|name| name == "ps1"), "{old:?}");
+        assert!(old.iter().any(|name| name == "left wheel motor"), "{old:?}");
+    }
+
+    #[test]
+    fn an_e_puck_lacks_its_ground_sensors_without_their_module() {
+        let ground = ["gs0", "gs1", "gs2"].map(String::from).to_vec();
+        assert_eq!(missing("#VRML_SIM R2023b utf8\nE-puck { }\n"), ground);
+        let module =
+            "#VRML_SIM R2023b utf8\nE-puck { groundSensorsSlot [ E-puckGroundSensors { } ] }\n";
+        assert!(missing(module).is_empty());
+        // A sensor of its own named gs0 in the slot is an extension device, not the module's.
+        let own = "#VRML_SIM R2023b utf8\nE-puck { groundSensorsSlot [ DistanceSensor { name \"gs0\" } ] }\n";
+        assert_eq!(missing(own), ground);
+        let old = "#VRML_SIM V8.5 utf8\nE-puck { groundSensorsSlot [ E-puckGroundSensors { } ] }\n";
+        assert!(missing(old).is_empty());
+    }
 
     #[test]
     fn a_pi_puck_board_gives_the_robot_its_three_leds() {

@@ -175,6 +175,12 @@ pub struct Importer<'d> {
     /// that robot) and the lines of the nodes that hold each shape.
     pub robots: Vec<(WorldRobot, Vec<ColouredObstacle>, Vec<Vec<usize>>)>,
     pub devices: Vec<ExtensionDevice>,
+    /// The names of the devices met while the run's robot's devices are listed (its children's
+    /// devices, and the ground sensors of a ground sensors module in its slots).
+    pub held_devices: Vec<String>,
+    /// The e-puck's own devices the run's robot's node does not hold (see
+    /// [`WbtImport::missing_devices`]).
+    pub missing_devices: Vec<String>,
     pub floor_textures: Vec<FloorTexture>,
     /// The textures of walls' appearances (see `appearance.rs`).
     pub wall_textures: Vec<WallTexture>,
@@ -253,6 +259,8 @@ fn walk<'d>(
         other_robot_warning: None,
         robots: Vec::new(),
         devices: Vec::new(),
+        held_devices: Vec::new(),
+        missing_devices: Vec::new(),
         floor_textures: Vec::new(),
         wall_textures: Vec::new(),
         floor_marks: Vec::new(),
@@ -328,6 +336,7 @@ fn finish((mut importer, basic_time_step_ms): (Importer<'_>, f64)) -> WbtImport 
         robot_profile: robot.map_or(STAND_IN_PROFILE, |r| r.profile).to_string(),
         robots,
         extension_devices: importer.devices,
+        missing_devices: importer.missing_devices,
         floor_textures: importer.floor_textures,
         wall_textures: importer.wall_textures,
         floor_meshes: importer.floor_meshes,
@@ -855,6 +864,7 @@ impl<'d> Importer<'d> {
         if plain {
             self.robot_children(node, true);
         }
+        self.missing_devices = self.devices_not_held(plain);
     }
 
     /// Lists a robot in `robots`, with its controller and name, and for a robot that is not an
@@ -904,6 +914,7 @@ impl<'d> Importer<'d> {
             self.body_y_up = found.y_up;
             self.robot = Some(found);
             self.robot_children(node, false);
+            self.missing_devices = self.devices_not_held(true);
             return;
         }
         if self.robot.is_some() || self.other_robot_warning.is_some() || self.chosen.is_some() {

@@ -180,6 +180,11 @@ pub struct WbtImport {
     pub robots: Vec<WorldRobot>,
     /// Devices in the robot's extension slots.
     pub extension_devices: Vec<ExtensionDevice>,
+    /// The e-puck's own devices (`ps0`, `gs0`, `left wheel motor`, `camera`...) that the run's
+    /// robot's node does not hold, which Webots' `getDevice` does not find: those a plain robot
+    /// node (an e-puck saved expanded, a project's robot, a robot that is no e-puck) lacks among
+    /// its children, and an E-puck PROTO's ground sensors without their module in a slot.
+    pub missing_devices: Vec<String>,
     /// Image textures on the floor, painted by [`WbtImport::paint_floor`].
     pub floor_textures: Vec<FloorTexture>,
     /// Image textures of walls' appearances, which [`WbtImport::shade_walls`] reads the
