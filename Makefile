@@ -34,7 +34,10 @@ SB3_PACKAGES := "stable-baselines3>=2.3,<3" "sb3-contrib>=2.3,<3"
 MARL_PACKAGES := "pettingzoo>=1.24"
 # The packages the compatibility corpus's controllers import (pyproject's webots-corpus extra).
 WEBOTS_CORPUS_PACKAGES := "scikit-fuzzy>=0.5" "scipy>=1.8" "networkx>=2.6" "deap>=1.3" "nnfs>=0.5" "pandas>=1.3" \
-	"opencv-python>=4.5" "scikit-learn>=1.0"
+	"opencv-python>=4.5" "scikit-learn>=1.0" "gym>=0.26" "tensorboardX>=2.6"
+# deepbots (the Webots RL framework several corpus projects build on) pins gym 0.21, which no
+# longer builds on this Python; it runs on gym 0.26, so it is installed without its pins.
+WEBOTS_CORPUS_NO_DEPS := "deepbots==1.0.0"
 # The binding crate's build script asks this interpreter for its configuration.
 export PYO3_PYTHON := $(CURDIR)/$(BIN)/python
 # matplotlib's font cache lives with the environment, so that a checkout's tests never read one
@@ -227,8 +230,9 @@ bench-transfer: build ## time the full default transfer study of the shipped and
 MIRRORS ?= mirrors
 
 webots-compat: build display-deps corpus-libs ## run the Webots compatibility corpus from local git mirrors (MIRRORS=DIR); writes docs/webots-compat.md
-	@$(BIN)/python -c 'import skfuzzy, scipy, networkx, deap, nnfs, pandas, cv2, sklearn' 2>/dev/null || echo "make webots-compat: installing the Python packages the corpus's controllers import (mazesim[webots-corpus]: scikit-fuzzy, SciPy, NetworkX, DEAP, nnfs, pandas, OpenCV with its windows, scikit-learn; about 135 MB to download, 600 MB in $(VENV))"
+	@$(BIN)/python -c 'import skfuzzy, scipy, networkx, deap, nnfs, pandas, cv2, sklearn, gym, deepbots' 2>/dev/null || echo "make webots-compat: installing the Python packages the corpus's controllers import (mazesim[webots-corpus]: scikit-fuzzy, SciPy, NetworkX, DEAP, nnfs, pandas, OpenCV with its windows, scikit-learn, gym, and deepbots; about 140 MB to download, 600 MB in $(VENV))"
 	$(BIN)/python -m pip install --quiet $(WEBOTS_CORPUS_PACKAGES)
+	$(BIN)/python -m pip install --quiet --no-deps $(WEBOTS_CORPUS_NO_DEPS)
 	$(BIN)/python tests/webots_corpus/run_corpus.py --mirrors $(MIRRORS)
 
 bench-peers: build ## mazesim against hand-written numpy, pymunk and JAX peers (installs pymunk and jax)

@@ -99,3 +99,20 @@ def test_robot_subclass_keeps_its_own_keyboard() -> None:
     assert robot.keyboard is robot.getKeyboard()
     assert robot.keyboard.getSamplingPeriod() == 32
     assert robot.mouse is None
+
+
+def test_a_wrapper_subclass_that_skips_robot_init_keeps_its_own_keyboard() -> None:
+    # A wrapper of another controller object (deepbots' KeyboardPrinter) subclasses Supervisor
+    # and never calls its __init__: its own ``self.keyboard`` is an attribute like any other.
+    robot = controller.Supervisor()
+
+    class Printer(controller.Supervisor):
+        def __init__(self, wrapped: controller.Supervisor) -> None:
+            self.wrapped = wrapped
+            self.keyboard = controller.Keyboard()
+            self.keyboard.enable(32)
+
+    printer = Printer(robot)
+    assert isinstance(printer.keyboard, controller.Keyboard)
+    assert printer.keyboard.getSamplingPeriod() == 32
+    assert printer.wrapped is robot

@@ -104,7 +104,9 @@ def _equipment_property(device: str) -> Any:
     ``Robot`` subclass may set to its own object, as in Webots."""
     key = f"_{device}_set"
     return property(
-        lambda self: self.__dict__.get(key, getattr(self._equipment, device)),
+        lambda self: (
+            self.__dict__[key] if key in self.__dict__ else getattr(self._equipment, device)
+        ),
         lambda self, value: self.__dict__.__setitem__(key, value),
         doc=f"The {device}; a controller's ``Robot`` subclass may keep its own ``self.{device}``.",
     )
