@@ -38,7 +38,7 @@ Robot {
 
 PYTHON_PROBE = """from controller import Robot
 robot = Robot()
-print("name", robot.getName())
+print("name", robot.getName(), "model", repr(robot.getModel()))
 print("devices", [robot.getDeviceByIndex(i).getName() for i in range(robot.getNumberOfDevices())])
 for name in ("ps0", "left wheel sensor", "camera", "left wheel motor", "ds0"):
     print(name, robot.getDevice(name) is not None)
@@ -90,7 +90,7 @@ def test_a_custom_robot_answers_only_for_the_devices_its_node_holds(tmp_path: Pa
     (tmp_path / "controllers" / "probe").mkdir(parents=True)
     (tmp_path / "controllers" / "probe" / "probe.py").write_text(PYTHON_PROBE)
     out = run_project(tmp_path, CUSTOM_ROBOT)
-    assert "name robot\n" in out, "a plain Robot's default name"
+    assert "name robot model ''\n" in out, "a plain Robot's default name and model"
     assert "devices ['left wheel motor', 'right wheel motor', 'led0', 'ds0']\n" in out
     for name, found in [
         ("ps0", False),

@@ -41,6 +41,8 @@ STOPPED_MESSAGE = (
     "returned -1: stopped, as Webots ends such a controller"
 )
 
+#: Webots' base robot node types: their ``model`` field is their own (empty by default).
+PLAIN_ROBOT_TYPES = ("Robot", "DifferentialWheels", "Supervisor")
 #: The e-puck's ground sensors, which Webots' E-puck has only with its ground sensors module.
 GROUND_SENSOR_NAMES = ("gs0", "gs1", "gs2")
 
@@ -180,7 +182,11 @@ class Robot(NotSimulated):
 
     def getModel(self) -> str:
         """The robot's model as Webots reports it: the E-puck PROTO's ``model`` field,
-        "GCtronic e-puck" (``version "2"``: "GCtronic e-puck2")."""
+        "GCtronic e-puck" (``version "2"``: "GCtronic e-puck2"); a plain ``Robot`` (or
+        ``DifferentialWheels``) node's own ``model`` field, empty by default."""
+        scene = self._simulation.scene
+        if scene.robot_type in PLAIN_ROBOT_TYPES:
+            return scene.robot_model_field or ""
         profile = str(self._simulation.simulator.robot.name)
         if profile.startswith("e-puck"):
             return "GCtronic e-puck2" if profile == "e-puck2" else "GCtronic e-puck"

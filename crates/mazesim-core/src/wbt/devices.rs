@@ -237,6 +237,35 @@ const DEVICE_PROTOS: &[DeviceProto] = &[
 const OWN_FIELD_TYPES: &[&str] = &["Emitter", "Receiver", "Camera"];
 /// Nodes that only hold and place other nodes.
 const CONTAINERS: &[&str] = &["Solid", "Pose", "Transform", "Group"];
+/// The base nodes of a robot's `children`, `device` and `endPoint` fields that hold no device
+/// but through their own such fields, where the walk of a robot's devices sees them: with the
+/// device types and PROTOs, every node whose devices mazesim knows.
+const SEEN_THROUGH: &[&str] = &[
+    "Solid",
+    "Pose",
+    "Transform",
+    "Group",
+    "Shape",
+    "CadShape",
+    "Slot",
+    "Robot",
+    "HingeJoint",
+    "Hinge2Joint",
+    "SliderJoint",
+    "BallJoint",
+    "Track",
+    "TrackWheel",
+    "Propeller",
+    "Charger",
+    "Billboard",
+    "Fluid",
+    "SolidReference",
+    "Skin",
+    "PointLight",
+    "SpotLight",
+    "DirectionalLight",
+    "Pi-puck",
+];
 /// Fields that place or hold a node rather than describe the device.
 const STRUCTURE_FIELDS: &[&str] = &[
     "translation",
@@ -367,6 +396,12 @@ impl<'d> Importer<'d> {
                 self.held_devices.push(name);
                 continue;
             }
+            if BUILT_IN_EXTENSIONS.contains(&kind) {
+                // An e-puck saved expanded keeps its ground sensors module among its children.
+                let held = GROUND_SENSORS.iter().map(|name| (*name).to_string());
+                self.held_devices.extend(held);
+                continue;
+            }
             let local = if JOINTS.contains(&kind) {
                 Frame::IDENTITY
             } else {
@@ -376,10 +411,12 @@ impl<'d> Importer<'d> {
             let device = DEVICE_TYPES.iter().find(|(t, _)| *t == kind);
             if device.is_none() {
                 // A PROTO mazesim does not read (Webots 6's `EPuck_DistanceSensor`) named as
-                // one of the e-puck's devices holds that device.
+                // one of the e-puck's devices holds that device; one named otherwise may hold
+                // any device, which makes the robot's devices unknown.
                 let named = self.strings(node, "name").first().cloned();
-                self.held_devices
-                    .extend(named.filter(|n| BUILT_IN_NAMES.contains(&n.as_str())));
+                let e_puck_named = named.filter(|n| BUILT_IN_NAMES.contains(&n.as_str()));
+                self.unseen_devices |= e_puck_named.is_none() && !SEEN_THROUGH.contains(&kind);
+                self.held_devices.extend(e_puck_named);
             }
             if let Some(&(_, default_name)) = device {
                 let name = self.strings(node, "name").first().cloned();
@@ -404,8 +441,13 @@ impl<'d> Importer<'d> {
     /// its slots and children are listed: for a plain robot node (`plain`: an e-puck saved
     /// expanded, a project's robot, a robot that is no e-puck) each one not among its devices;
     /// for an E-puck PROTO node, which holds the others, its ground sensors unless a ground
-    /// sensors module is in a slot. Webots' `getDevice` finds none of them.
+    /// sensors module is in a slot. Webots' `getDevice` finds none of them. None is missing
+    /// when the robot holds a node whose devices mazesim cannot see (a PROTO it does not read:
+    /// it may hold any device).
     pub fn devices_not_held(&self, plain: bool) -> Vec<String> {
+        if self.unseen_devices {
+            return Vec::new();
+        }
         let names: &[&str] = if plain {
             BUILT_IN_NAMES
         } else {
@@ -448,6 +490,7 @@ impl<'d> Importer<'d> {
                 ));
             }
         } else {
+            self.unseen_devices |= !SEEN_THROUGH.contains(&kind);
             let label = self.label(node);
             let what = if kind == "Shape" || kind == "CadShape" {
                 "a visual node: other robots' cameras see it (a Box, Cylinder, Capsule or Sphere) and, in a run of the whole world, their infra-red rays and bodies meet it where it spans their sensors' height; nothing else simulates it"
@@ -606,6 +649,23 @@ mod tests {
         );
         assert!(old.iter().any(|name| name == "ps1"), "{old:?}");
         assert!(old.iter().any(|name| name == "left wheel motor"), "{old:?}");
+        // An e-puck saved expanded keeps its ground sensors module among its children.
+        let expanded = missing(
+            "#VRML_SIM R2023b utf8\nRobot { name \"e-puck\" children [\n\
+             Pose { children [ E-puckGroundSensors { } ] } ] }\n",
+        );
+        assert!(!expanded.iter().any(|name| name == "gs0"), "{expanded:?}");
+        assert!(expanded.iter().any(|name| name == "ps0"), "{expanded:?}");
+    }
+
+    #[test]
+    fn a_robot_holding_a_proto_mazesim_does_not_read_lacks_nothing_known() {
+        // The PROTO may hold any device: none is said missing, in children or in a slot.
+        let unread =
+            "#VRML_SIM R2023b utf8\nRobot { name \"e-puck\" children [ MySensorBoard { } ] }\n";
+        assert!(missing(unread).is_empty());
+        let slot = "#VRML_SIM R2023b utf8\nE-puck { groundSensorsSlot [ MyGroundModule { } ] }\n";
+        assert!(missing(slot).is_empty());
     }
 
     #[test]

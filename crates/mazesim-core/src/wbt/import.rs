@@ -178,6 +178,9 @@ pub struct Importer<'d> {
     /// The names of the devices met while the run's robot's devices are listed (its children's
     /// devices, and the ground sensors of a ground sensors module in its slots).
     pub held_devices: Vec<String>,
+    /// Whether the run's robot holds a node whose devices mazesim cannot see (a PROTO it does
+    /// not read), which leaves the e-puck's devices it lacks unknown.
+    pub unseen_devices: bool,
     /// The e-puck's own devices the run's robot's node does not hold (see
     /// [`WbtImport::missing_devices`]).
     pub missing_devices: Vec<String>,
@@ -260,6 +263,7 @@ fn walk<'d>(
         robots: Vec::new(),
         devices: Vec::new(),
         held_devices: Vec::new(),
+        unseen_devices: false,
         missing_devices: Vec::new(),
         floor_textures: Vec::new(),
         wall_textures: Vec::new(),
@@ -984,7 +988,13 @@ impl<'d> Importer<'d> {
             placed
         };
         let up = body.vector([0.0, 0.0, 1.0]);
-        if tilt(up) > TILT_TOLERANCE {
+        if up[2] < 0.0 {
+            // `tilt` measures from the vertical either way: a robot on its back is not level.
+            self.warn(format!(
+                "{label}: the robot stands upside down (its up axis {:.3} rad from the world's); mazesim simulates it upright, where in Webots it lies on its back, its wheels off the floor",
+                up[2].clamp(-1.0, 1.0).acos()
+            ));
+        } else if tilt(up) > TILT_TOLERANCE {
             self.warn(format!(
                 "{label}: the robot is tilted by {:.3} rad from upright; its heading is taken from its projected forward axis",
                 tilt(up)

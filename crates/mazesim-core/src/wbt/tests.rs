@@ -1109,3 +1109,13 @@ fn a_library_robot_without_readable_shapes_stands_as_its_footprint() {
         w.warnings
     );
 }
+
+#[test]
+fn a_robot_standing_upside_down_is_said_so() {
+    let w = import("#VRML_SIM R2023b utf8\nE-puck { rotation 1 0 0 3.14159 }\n");
+    assert!(warned(&w, "upside down"), "{:?}", w.warnings);
+    let upright = import("#VRML_SIM R2023b utf8\nE-puck { rotation 0 0 1 3.14159 }\n");
+    assert!(!warned(&upright, "upside down"), "{:?}", upright.warnings);
+    let old = import("#VRML_SIM V8.5 utf8\nE-puck { rotation 1 0 0 3.14159 }\n");
+    assert!(warned(&old, "upside down"), "{:?}", old.warnings);
+}
