@@ -159,7 +159,8 @@ def import_wbt(
     """Imports a Webots .wbt file: the mazesim World and the import report (obstacles, robot,
     basic_time_step_ms, warnings, one_controller_warnings (those of a run of one controller
     only), robot_model, robot_line, robot_profile, robots (every robot:
-    pose, model, profile, controller, name, def_name, line, y_up), extension_devices,
+    pose, model, profile, controller, name, def_name, line, y_up, node_type, model_field),
+    extension_devices,
     missing_devices (the e-puck's own devices the robot's node lacks), floor_textures,
     wall_textures (urls, owner, red, colour, roughness, candidates),
     floor_paint). `floor_images` maps texture files to (height, width) grey levels in [0, 1];

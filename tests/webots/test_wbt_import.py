@@ -262,6 +262,7 @@ def test_cli_json_layout(tmp_path: Path) -> None:
     assert report["recognition"] == {"cameras": [], "objects": []}
     (robot,) = report["robots"]
     keys = {"pose", "model", "profile", "controller", "name", "def_name", "line", "y_up"}
+    keys |= {"node_type", "model_field"}
     assert set(robot) == keys
     assert robot["line"] == report["robot_line"]
     assert robot["y_up"] is False, "an E-puck PROTO node of R2022a on stands Z-up"

@@ -126,3 +126,50 @@ def test_an_e_puck_has_ground_sensors_only_with_their_module(tmp_path: Path, slo
     assert f"found {[bool(slot)] * 3}\n" in out
     assert "ps0 True\n" in out
     assert out.count("has no ground sensors module") == (0 if slot else 1)
+
+
+#: A project's own robot PROTO: a plain Robot with the e-puck's wheel motors and one ps0.
+PROJECT_PROTO = """#VRML_SIM R2023b utf8
+PROTO MyBot [
+  field SFVec3f translation 0 0 0
+  field SFRotation rotation 0 0 1 0
+  field SFString name "mybot"
+  field SFString controller "probe"
+  field SFString model "my model"
+]
+{
+  Robot {
+    translation IS translation
+    rotation IS rotation
+    name IS name
+    model IS model
+    controller IS controller
+    children [
+      HingeJoint { device [ RotationalMotor { name "left wheel motor" } ] endPoint Solid { } }
+      HingeJoint {
+        device [ RotationalMotor { name "right wheel motor" } ] endPoint Solid { name "r" }
+      }
+      DistanceSensor { name "ps0" }
+    ]
+  }
+}
+"""
+
+
+def test_a_project_robot_proto_is_named_and_equipped_as_it_declares(tmp_path: Path) -> None:
+    (tmp_path / "protos").mkdir()
+    (tmp_path / "protos" / "MyBot.proto").write_text(PROJECT_PROTO)
+    (tmp_path / "controllers" / "probe").mkdir(parents=True)
+    (tmp_path / "controllers" / "probe" / "probe.py").write_text(
+        "from controller import Robot\nrobot = Robot()\n"
+        "print('name', robot.getName(), 'model', robot.getModel())\n"
+        "print('ps0', robot.getDevice('ps0') is not None)\n"
+        "print('ps1', robot.getDevice('ps1') is not None)\nrobot.step(32)\n"
+    )
+    world = '#VRML_SIM R2023b utf8\nEXTERNPROTO "../protos/MyBot.proto"\nRectangleArena { }\n'
+    out = run_project(tmp_path, world + "MyBot { }\n")
+    assert "name mybot model my model\n" in out, "the PROTO's declared defaults"
+    assert "ps0 True\nps1 False\n" in out, "its own ps0 only"
+    assert "holds no device 'ps1'" in out
+    out = run_project(tmp_path, world + 'MyBot { name "rover" model "mk2" }\n')
+    assert "name rover model mk2\n" in out

@@ -52,7 +52,9 @@ fn robot_and_floor(out: &Bound<'_, PyDict>, import: &WbtImport) -> PyResult<()> 
         d.set_item("name", robot.name.clone())?;
         d.set_item("def_name", robot.def_name.clone())?;
         d.set_item("line", robot.line)?;
-        d.set_item("y_up", robot.y_up)
+        d.set_item("y_up", robot.y_up)?;
+        d.set_item("node_type", &robot.node_type)?;
+        d.set_item("model_field", robot.model_field.clone())
     })?;
     out.set_item("robots", robots)?;
     let devices = dicts(py, &import.extension_devices, |d, device| {

@@ -147,7 +147,9 @@ class WorldRobot(TypedDict):
     its controller runs, its body does not move), its ``controller``, ``name`` and ``def_name``
     fields, the ``line`` of its node and whether its body is modelled Y-up (``y_up``: forward
     along its node's local -z, up its local y, as every robot of a file before R2022a, and a
-    body built so and stood upright by its ``rotation`` in a later file)."""
+    body built so and stood upright by its ``rotation`` in a later file), the type of its node
+    once the project's PROTOs are expanded (``node_type``: ``E-puck``, ``Robot``...) and that
+    node's own ``model`` field (``model_field``, None when it writes none)."""
 
     pose: list[float]
     model: str
@@ -157,6 +159,8 @@ class WorldRobot(TypedDict):
     def_name: str | None
     line: int
     y_up: bool
+    node_type: str
+    model_field: str | None
 
 
 class ImportReport(TypedDict):

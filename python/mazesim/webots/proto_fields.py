@@ -25,6 +25,7 @@ from typing import Any
 from mazesim._core import EPUCK_DEFAULT_CONTROLLER
 from mazesim.webots.camera import DEFAULT_FOV, DEFAULT_HEIGHT, DEFAULT_WIDTH
 from mazesim.webots.radio_devices import E_PUCK_CHANNEL
+from mazesim.webots.scene import BASE_NAMES
 
 __all__ = ["DeclaredFields", "declared_fields", "robot_label"]
 
@@ -172,10 +173,13 @@ _E_PUCK_MODELS = ("E-puck", "e-puck2")
 
 def robot_label(robot: Mapping[str, Any]) -> str:
     """What a robot of the import's ``robots`` is called, as Webots calls it: its ``name``
-    field, else the default its PROTO declares (an E-puck's, of either version, is "e-puck"),
-    else its DEF name, else its model."""
+    field, else its base node type's default (a Robot's "robot"), else the default its PROTO
+    declares (an E-puck's, of either version, is "e-puck"), else its DEF name, else its
+    model."""
     if robot.get("name"):
         return str(robot["name"])
+    if robot.get("node_type") in BASE_NAMES:
+        return BASE_NAMES[str(robot["node_type"])]
     model = robot.get("model")
     declared = declared_fields("E-puck" if model in _E_PUCK_MODELS else str(model))
     return str(declared.strings.get("name") or robot.get("def_name") or model)

@@ -41,8 +41,8 @@ STOPPED_MESSAGE = (
     "returned -1: stopped, as Webots ends such a controller"
 )
 
-#: Webots' base robot node types: their ``model`` field is their own (empty by default).
-PLAIN_ROBOT_TYPES = ("Robot", "DifferentialWheels", "Supervisor")
+#: The E-puck PROTOs (Webots 7's ``EPuck``, the ENU variants): their ``model`` is the PROTO's.
+EPUCK_PROTO_TYPES = ("E-puck", "E-puck_enu", "E-Puck_enu", "EPuck")
 #: The e-puck's ground sensors, which Webots' E-puck has only with its ground sensors module.
 GROUND_SENSOR_NAMES = ("gs0", "gs1", "gs2")
 
@@ -177,16 +177,19 @@ class Robot(NotSimulated):
         return self._simulation.clock
 
     def getName(self) -> str:
-        """The robot's name: the world's ``name`` field of the robot, by default ``"e-puck"``."""
-        return self._simulation.scene.robot_name
+        """The robot's name: the world's ``name`` field of the robot (a project robot PROTO's
+        declared default when the instance writes none), else its node type's default (the
+        E-puck's ``"e-puck"``, a plain Robot's ``"robot"``)."""
+        return self._simulation.robot_name
 
     def getModel(self) -> str:
         """The robot's model as Webots reports it: the E-puck PROTO's ``model`` field,
-        "GCtronic e-puck" (``version "2"``: "GCtronic e-puck2"); a plain ``Robot`` (or
-        ``DifferentialWheels``) node's own ``model`` field, empty by default."""
-        scene = self._simulation.scene
-        if scene.robot_type in PLAIN_ROBOT_TYPES:
-            return scene.robot_model_field or ""
+        "GCtronic e-puck" (``version "2"``: "GCtronic e-puck2"); any other robot node's own
+        ``model`` field (a project PROTO's once expanded), empty by default."""
+        own = self._simulation.own_robot
+        node_type = own.get("node_type")
+        if node_type is not None and node_type not in EPUCK_PROTO_TYPES:
+            return str(own.get("model_field") or "")
         profile = str(self._simulation.simulator.robot.name)
         if profile.startswith("e-puck"):
             return "GCtronic e-puck2" if profile == "e-puck2" else "GCtronic e-puck"

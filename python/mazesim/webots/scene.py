@@ -167,8 +167,6 @@ class Scene:
             ``"e-puck"``, a plain Robot's ``"robot"``).
         robot_type: The robot node's type (``E-puck``, ``Robot``...); None without one.
         robot_custom_data: The robot's ``customData`` field.
-        robot_model_field: The robot node's own ``model`` field as the file writes it (None
-            when it writes none).
         robot_battery: The robot's ``battery`` field: its energy (J), the most it holds (J)
             and its recharge speed (W); empty without a battery (Webots' default).
         robot_cpu_consumption: The robot's ``cpuConsumption`` field (W; Webots' default 10).
@@ -245,7 +243,6 @@ class Scene:
     robot_name: str = "e-puck"
     robot_type: str | None = None
     robot_custom_data: str = ""
-    robot_model_field: str | None = None
     robot_battery: tuple[float, ...] = ()
     robot_cpu_consumption: float = 10.0
     robot_controller: str | None = None
@@ -383,7 +380,6 @@ def _scene(
         named = first_value(own, "name", Field.string)
         scene.robot_name = named or BASE_NAMES.get(robot.type_name) or scene.robot_name
         scene.robot_custom_data = first_value(own, "customData", Field.string) or ""
-        scene.robot_model_field = first_value(own, "model", Field.string)
         scene.robot_battery = first_value(own, "battery", _numbers) or ()
         cpu = first_value(own, "cpuConsumption", lambda f: f.numbers(1))
         scene.robot_cpu_consumption = cpu[0] if cpu else scene.robot_cpu_consumption

@@ -277,6 +277,21 @@ class RobotSimulation:
         self._lights_set: tuple[int, list[Light] | None] | None = None
 
     @property
+    def own_robot(self) -> Mapping[str, Any]:
+        """The import report's entry of the run's robot (its ``robots`` entry on
+        ``robot_line``), empty without one."""
+        line = self.report.get("robot_line")
+        robots = self.report.get("robots") or []
+        return next((r for r in robots if isinstance(r, Mapping) and r.get("line") == line), {})
+
+    @property
+    def robot_name(self) -> str:
+        """What Webots calls the run's robot: its node's ``name`` once the project's PROTOs are
+        expanded (a project robot PROTO's declared default when the instance writes none),
+        else its node type's default (the scene's: the E-puck's "e-puck", a Robot's "robot")."""
+        return str(self.own_robot.get("name") or self.scene.robot_name)
+
+    @property
     def time_is_up(self) -> bool:
         """Whether the time limit has been reached."""
         return self.world_over or (self.step_limit is not None and self.steps >= self.step_limit)

@@ -776,7 +776,7 @@ class Supervisor(Robot):
             self._simulation.supervisor = True
         robot_type = str(self._simulation.report.get("robot_model") or "E-puck")
         self._self = Node(robot_type, scene.robot_def or "", robot=True)
-        self._self._strings.update(name=scene.robot_name, customData=self._custom_data)
+        self._self._strings.update(name=self._simulation.robot_name, customData=self._custom_data)
         if scene.robot_controller is not None or self._simulation.report.get("robot_model"):
             # The robot node's field as Webots reads it: the file's, else its PROTO's default
             # (the E-puck's e-puck_avoid_obstacles), else a Robot node's, "<generic>".

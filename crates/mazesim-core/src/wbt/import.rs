@@ -889,6 +889,8 @@ impl<'d> Importer<'d> {
             def_name: node.def_name.clone(),
             line: node.line,
             y_up: found.y_up,
+            node_type: node.type_name.clone(),
+            model_field: self.strings(node, "model").first().cloned(),
         };
         self.robots.push((robot, shapes.0, shapes.1));
     }

@@ -137,6 +137,11 @@ pub struct WorldRobot {
     /// local -x, as every robot of a file before R2022a and a body built so and stood upright
     /// by its `rotation` in a later file; its start pose and its devices' frames are read so.
     pub y_up: bool,
+    /// The type of its node once a project's PROTOs are expanded (`E-puck`, `Robot`,
+    /// `Pioneer3dx`...): a project's own robot PROTO is the base node its body is.
+    pub node_type: String,
+    /// Its node's own `model` field, when the node (or the PROTO it expands from) writes one.
+    pub model_field: Option<String>,
 }
 
 /// What a `.wbt` world holds for mazesim.
