@@ -136,6 +136,7 @@ PROTO MyBot [
   field SFString name "mybot"
   field SFString controller "probe"
   field SFString model "my model"
+  field SFString customData "from the PROTO"
 ]
 {
   Robot {
@@ -144,32 +145,50 @@ PROTO MyBot [
     name IS name
     model IS model
     controller IS controller
+    customData IS customData
     children [
       HingeJoint { device [ RotationalMotor { name "left wheel motor" } ] endPoint Solid { } }
       HingeJoint {
         device [ RotationalMotor { name "right wheel motor" } ] endPoint Solid { name "r" }
       }
-      DistanceSensor { name "ps0" }
+      DistanceSensor { name "ps0" lookupTable [ 0 0 0, 0.1 1000 0 ] }
     ]
   }
 }
 """
 
 
-def test_a_project_robot_proto_is_named_and_equipped_as_it_declares(tmp_path: Path) -> None:
-    (tmp_path / "protos").mkdir()
-    (tmp_path / "protos" / "MyBot.proto").write_text(PROJECT_PROTO)
-    (tmp_path / "controllers" / "probe").mkdir(parents=True)
-    (tmp_path / "controllers" / "probe" / "probe.py").write_text(
-        "from controller import Robot\nrobot = Robot()\n"
-        "print('name', robot.getName(), 'model', robot.getModel())\n"
-        "print('ps0', robot.getDevice('ps0') is not None)\n"
-        "print('ps1', robot.getDevice('ps1') is not None)\nrobot.step(32)\n"
+#: A world of the project holding that PROTO, before its robot's node.
+PROTO_WORLD = '#VRML_SIM R2023b utf8\nEXTERNPROTO "../protos/MyBot.proto"\nRectangleArena { }\n'
+
+
+def run_proto_robot(project: Path, probe: str, robot_node: str) -> str:
+    """Runs ``probe`` as the controller of ``robot_node`` (a MyBot instance) in a project
+    holding :data:`PROJECT_PROTO`; what it printed."""
+    (project / "protos").mkdir(exist_ok=True)
+    (project / "protos" / "MyBot.proto").write_text(PROJECT_PROTO)
+    (project / "controllers" / "probe").mkdir(parents=True, exist_ok=True)
+    (project / "controllers" / "probe" / "probe.py").write_text(
+        "from controller import Robot\nrobot = Robot()\n" + probe
     )
-    world = '#VRML_SIM R2023b utf8\nEXTERNPROTO "../protos/MyBot.proto"\nRectangleArena { }\n'
-    out = run_project(tmp_path, world + "MyBot { }\n")
+    return run_project(project, PROTO_WORLD + robot_node)
+
+
+def test_a_project_robot_proto_is_read_as_its_proto_builds_it(tmp_path: Path) -> None:
+    # Named, modelled and equipped as the PROTO declares and builds it (its own ps0 reading
+    # through the table the PROTO gives it, its customData the PROTO's default), though the
+    # robot's node in the file is only ``MyBot { }``.
+    probe = (
+        "print('name', robot.getName(), 'model', robot.getModel())\n"
+        "print('ps1', robot.getDevice('ps1') is not None)\n"
+        "ps0 = robot.getDevice('ps0')\nps0.enable(32)\nrobot.step(32)\n"
+        "print('table', ps0.getLookupTable(), 'max', ps0.getMaxValue())\n"
+        "print('data', robot.getCustomData())\n"
+    )
+    out = run_proto_robot(tmp_path, probe, "MyBot { }\n")
     assert "name mybot model my model\n" in out, "the PROTO's declared defaults"
-    assert "ps0 True\nps1 False\n" in out, "its own ps0 only"
-    assert "holds no device 'ps1'" in out
-    out = run_project(tmp_path, world + 'MyBot { name "rover" model "mk2" }\n')
+    assert "ps1 False\n" in out and "holds no device 'ps1'" in out
+    assert "table [0.0, 0.0, 0.0, 0.1, 1000.0, 0.0] max 1000.0\n" in out
+    assert "data from the PROTO\n" in out
+    out = run_proto_robot(tmp_path, probe, 'MyBot { name "rover" model "mk2" }\n')
     assert "name rover model mk2\n" in out

@@ -453,9 +453,11 @@ def import_wbt_text(
     Raises:
         WorldFormatError: The text is not a readable Webots world.
     """
+    from mazesim.webots.expansions import remember
     from mazesim.webots.proto import expand_world, world_resolver
 
     expanded, protos = expand_world(text, source)
+    remember(text, expanded)
 
     def imported(images: Any = None, colours: Any = None) -> tuple[World, dict[str, Any]]:
         return _core.import_wbt_text(

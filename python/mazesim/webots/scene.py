@@ -19,6 +19,7 @@ from typing import Any
 from mazesim._paths import open_input
 from mazesim.webots.devices import device_side
 from mazesim.webots.differential_drive import WheelsNode, wheels_node
+from mazesim.webots.expansions import expanded_of
 from mazesim.webots.frames import (
     WORLD_FRAME,
     camera_heading,
@@ -329,13 +330,36 @@ def read_scenes(
     Raises:
         WorldFormatError: The text is not a world's nodes (the import says so first).
     """
+    expansion = _Expansion(expanded_of(text))
     text = text.lstrip("\ufeff")
     tree = parse_nodes(text, "<world>", max_depth=None)
     every = list(nodes_in_order(tree))
     bodies = [*y_up, *[None] * (len(robots) - len(y_up))]
     return [
-        _scene(text, tree, every, model, line, body) for (model, line), body in zip(robots, bodies)
+        _scene(text, tree, every, model, line, body, expansion)
+        for (model, line), body in zip(robots, bodies)
     ]
+
+
+class _Expansion:
+    """The expansion of the world text an import made (:mod:`mazesim.webots.expansions`),
+    parsed when first asked for a robot's body."""
+
+    def __init__(self, text: str | None) -> None:
+        self.text = None if text is None else text.lstrip("\ufeff")
+        self._read: tuple[list[Node], Callable[[int], int]] | None = None
+
+    def body(self, line: int | None) -> Node | None:
+        """The base robot node (``Robot``, ``E-puck``...) a PROTO instance on ``line``
+        expands to; None without an expansion, a line, or such a node there."""
+        if self.text is None or line is None:
+            return None
+        if self._read is None:
+            every = list(nodes_in_order(parse_nodes(self.text, "<world>", max_depth=None)))
+            self._read = every, line_numbers(self.text)
+        every, line_of = self._read
+        found = _robot_node(line_of, every, ROBOT_TYPES, line)
+        return found if found is not None and found.type_name in ROBOT_TYPES else None
 
 
 def body_y_up(robots: Sequence[Mapping[str, Any]], line: int | None) -> bool | None:
@@ -354,9 +378,12 @@ def _scene(
     robot_model: str | None,
     robot_line: int | None,
     y_up: bool | None,
+    expansion: _Expansion,
 ) -> Scene:
     """The scene facts of a parsed world (``tree``, ``every`` node in file order) for a robot
-    (``y_up``: whether its body is modelled Y-up, None for the file's convention)."""
+    (``y_up``: whether its body is modelled Y-up, None for the file's convention); a robot
+    that is an instance of a project's PROTO is read from the base node its PROTO builds, in
+    the import's ``expansion`` of the text."""
     scene = Scene()
     version, scene.nue = world_version(text)
     scene.y_up_devices = scene.nue
@@ -373,9 +400,13 @@ def _scene(
     # Without a robot node, the whole file stands for it.
     own: list[Node] = every
     if robot is not None:
+        scene.robot_def = robot.def_name
+        built = None if robot.type_name in ROBOT_TYPES else expansion.body(robot_line)
+        if built is not None and expansion.text is not None:
+            # A project's robot PROTO: its fields, sensors and their tables are its body's.
+            robot, text = built, expansion.text
         own = [robot]
         inside = list(nodes_in_order(f for item in robot.fields for f in item.nodes))
-        scene.robot_def = robot.def_name
         scene.robot_type = robot.type_name
         named = first_value(own, "name", Field.string)
         scene.robot_name = named or BASE_NAMES.get(robot.type_name) or scene.robot_name
