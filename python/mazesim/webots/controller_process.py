@@ -57,6 +57,7 @@ from typing import TYPE_CHECKING, Any
 from mazesim.webots.last_commands import WheelCommand
 
 if TYPE_CHECKING:
+    from mazesim._core import RobotProfile
     from mazesim.webots.keyboard import KeyScript
     from mazesim.webots.process_template import LastWords
     from mazesim.webots.requirements import PreparedController
@@ -254,12 +255,13 @@ class RemoteSimulator(Remote):
     step, as a Webots robot's sensors do.
     """
 
-    def __init__(self, connection: Connection, profile: str) -> None:
+    def __init__(self, connection: Connection, profile: str | RobotProfile) -> None:
         from mazesim._core import RobotProfile
 
         super().__init__(connection, "simulator")
-        #: The profile, built here: it does not cross the pipe.
-        self.robot = RobotProfile.builtin(profile)
+        #: The profile, built here from the robot's node as the world's process builds it
+        #: (:func:`~mazesim.webots.simulation.robot_profile`): it does not cross the pipe.
+        self.robot = RobotProfile.builtin(profile) if isinstance(profile, str) else profile
         self._after_step: dict[str, Any] = {}
         #: The world's last reset, as the last step's answer told it (None before the first).
         self.last_reset: Any = None
@@ -361,6 +363,7 @@ def controller_main(
     from mazesim.webots.importer import import_wbt, import_wbt_text
     from mazesim.webots.runner import run_controller
     from mazesim.webots.scene import body_y_up, read_scene, read_world_text
+    from mazesim.webots.simulation import robot_profile
 
     _link["pid"] = os.getpid()
     text = job.world_text
@@ -374,6 +377,8 @@ def controller_main(
     line = report.get("robot_line")
     y_up = body_y_up(report.get("robots") or [], line)
     scene = read_scene(text, report.get("robot_model"), line, y_up)
+    # The robot's own sensors and drive make its profile here as in the world's process.
+    profile = robot_profile({"robot_profile": job.profile}, scene)
     if job.custom_data is not None:
         scene.robot_custom_data = job.custom_data
     summary = ControllerSummary(1, "", False, False, False, 0)
@@ -385,7 +390,7 @@ def controller_main(
             noise=job.noise,
             report=report,
             scene=scene,
-            simulator=RemoteSimulator(connection, job.profile),
+            simulator=RemoteSimulator(connection, profile),
             radio=Remote(connection, "radio"),
             fleet=Remote(connection, "fleet"),
             robot_index=job.robot_index,

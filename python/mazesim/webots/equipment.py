@@ -34,6 +34,7 @@ from mazesim.webots.differential_drive import EPUCK_WHEELS, DifferentialDrive
 from mazesim.webots.inert import Display, Pen, Speaker
 from mazesim.webots.joints import JointMotor, JointPositionSensor, LinearJointMotor, pair_joints
 from mazesim.webots.keyboard import Joystick, Keyboard, Mouse
+from mazesim.webots.own_drive import wheel_names
 from mazesim.webots.radio_devices import (
     E_PUCK_CHANNEL,
     Emitter,
@@ -356,8 +357,14 @@ class Equipment:
             for entry in simulation.report.get("extension_devices") or []
             if isinstance(entry, Mapping)
         ]
+        drive = simulation.scene.drive
         sensor_names, renamed_sensors = _wheel_names(entries, "PositionSensor", _WHEEL_SENSORS)
         motor_names, renamed_motors = _wheel_names(entries, "RotationalMotor", _WHEEL_MOTORS)
+        # A two-wheeled robot of its own build: its left wheel is the one its node puts left.
+        for side, name in wheel_names(drive, "PositionSensor").items():
+            sensor_names[side] = name
+        for side, name in wheel_names(drive, "RotationalMotor").items():
+            motor_names[side] = name
         wheel_entries = {id(entry) for entry in [*renamed_sensors, *renamed_motors]}
         encoders = [
             PositionSensor(name, simulation, side) for side, name in enumerate(sensor_names)

@@ -482,6 +482,16 @@ def import_wbt_text(
     return world, report
 
 
+def own_build(report: Mapping[str, Any]) -> bool:
+    """Whether the run's robot is a two-wheeled robot of its own build: the import simulates it
+    (its ``robots`` entry has a profile) though its model is no e-puck's (a plain ``Robot``
+    whose two motors turn its wheels: :mod:`mazesim.webots.own_drive`)."""
+    model = report.get("robot_model")
+    line = report.get("robot_line")
+    own = next((r for r in report.get("robots") or [] if r.get("line") == line), None)
+    return bool(model) and model not in E_PUCK_MODELS and bool(own and own.get("profile"))
+
+
 def robot_warnings(report: Mapping[str, Any]) -> list[str]:
     """Warnings about the world's robot that the report does not already give.
 
@@ -493,7 +503,7 @@ def robot_warnings(report: Mapping[str, Any]) -> list[str]:
         ``robot_profile``, by default the e-puck), unless a report warning already names it.
     """
     model = report.get("robot_model")
-    if not model or model in E_PUCK_MODELS:
+    if not model or model in E_PUCK_MODELS or own_build(report):
         return []
     if any(str(model) in str(warning) for warning in report.get("warnings", [])):
         return []
@@ -522,6 +532,8 @@ def import_summary(
     model = report.get("robot_model")
     if robots > 1:
         robot = f"{robots} robots, each run by its own controller"
+    elif model and own_build(report):
+        robot = f"robot: {model}, a two-wheeled robot of its own build, rolled on its own wheels"
     elif model:
         robot = f"robot: {model}, simulated as the {report.get('robot_profile') or 'e-puck'}"
     else:

@@ -29,6 +29,7 @@ from typing import Any
 from mazesim._core import RobotProfile
 from mazesim._toml import dump_toml, load_toml
 from mazesim.errors import MazesimError, _shown
+from mazesim.webots.own_drive import drive_layout
 from mazesim.webots.scene import Row, Scene
 
 __all__ = ["OwnSensors", "own_sensors"]
@@ -104,6 +105,8 @@ def own_sensors(name: str, scene: Scene | None) -> OwnSensors:
         or scene.malformed_tables
         or scene.sensor_poses
         or scene.infrared_elevation
+        or scene.drive
+        or scene.drive_refused
     ):
         return OwnSensors()
     layout = _profile_layout(name)
@@ -135,7 +138,16 @@ def own_sensors(name: str, scene: Scene | None) -> OwnSensors:
     elevations, floor_warnings = _tilted_rays(layout, scene)
     types, type_warnings = _ray_types(layout, scene)
     warnings += floor_warnings + type_warnings
-    changed = tables or poses or elevations or types
+    if scene.drive is not None:
+        warnings += scene.drive.warnings
+        layout = copy.deepcopy(layout)
+        drive_layout(layout, scene.drive)
+    elif scene.drive_refused is not None:
+        warnings.append(
+            f"its own two wheels do not drive it: {scene.drive_refused}; the e-puck's wheels "
+            "and body stand in for them"
+        )
+    changed = tables or poses or elevations or types or scene.drive
     profile = _profile_with(layout, tables, poses, elevations, set(types)) if changed else None
     return OwnSensors(tables, poses, elevations, types, profile, warnings)
 

@@ -28,6 +28,7 @@ from mazesim.webots.frames import (
     rotation_matrix,
 )
 from mazesim.webots.lights import Light, LightSource, light_sources, lit
+from mazesim.webots.own_drive import OwnDrive, own_drive
 from mazesim.webots.proto.syntax import (
     Field,
     Node,
@@ -234,6 +235,11 @@ class Scene:
             (those of ``sensor_tables``), by its ``name``: ``"generic"`` (Webots' default where
             the node has no such field), ``"infra-red"``, ``"sonar"`` or ``"laser"``, as
             written.
+        drive: The wheels, axle and body of a plain ``Robot`` node that is a two-wheeled robot
+            of its own build, not an e-puck (:func:`~mazesim.webots.own_drive.own_drive`);
+            None for another robot.
+        drive_refused: Why such a robot's own two wheels do not drive it (the e-puck's then
+            do), None otherwise.
     """
 
     defs: dict[str, str] = field(default_factory=dict)
@@ -269,6 +275,8 @@ class Scene:
     sensor_poses: dict[str, tuple[float, float, float, float]] = field(default_factory=dict)
     sensor_heights: dict[str, float] = field(default_factory=dict)
     sensor_types: dict[str, str] = field(default_factory=dict)
+    drive: OwnDrive | None = None
+    drive_refused: str | None = None
 
 
 def _hinge_wheels(year: str | None) -> bool:
@@ -428,6 +436,12 @@ def _scene(
             scene.sensor_poses = {name: pose[:4] for name, pose in placed.items()}
             scene.sensor_heights = {name: pose[4] for name, pose in placed.items()}
             scene.sensor_types = _sensor_types(inside)
+            if robot.type_name == "Robot" and robot_model not in {None, "e-puck", *EPUCK_TYPES}:
+                # The import took it for the e-puck without its name, ps0 or wheel motors:
+                # a two-wheeled robot of its own build.
+                found = own_drive(robot, scene.body_y_up)
+                scene.drive = found if isinstance(found, OwnDrive) else None
+                scene.drive_refused = found if isinstance(found, str) else None
         if robot.type_name == "E-puck":
             scene.infrared_elevation = EPUCK_IR_ELEVATION
         kinematic = first_value(own, "kinematic", Field.flag)

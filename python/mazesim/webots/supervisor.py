@@ -44,7 +44,7 @@ from mazesim.webots.frames import (
     placed,
     rotation_matrix,
 )
-from mazesim.webots.importer import E_PUCK_MODELS
+from mazesim.webots.importer import E_PUCK_MODELS, own_build
 from mazesim.webots.inert import ContactPoint
 from mazesim.webots.lights import LIGHT_TYPES
 from mazesim.webots.movie import MovieRecorder
@@ -820,7 +820,11 @@ class Supervisor(Robot):
         # The robot of the run when it is no e-puck: its collision shapes are the world's
         # obstacles (though not in its own import, where the e-puck stands in for it).
         model = self._simulation.report.get("robot_model")
-        if model is not None and model not in E_PUCK_MODELS:
+        if (
+            model is not None
+            and model not in E_PUCK_MODELS
+            and not own_build(self._simulation.report)
+        ):
             self._self._line = int(self._simulation.report.get("robot_line") or 0)
             self._self._held = Held(obstacle=True)
         if self._simulation.fleet is not None:

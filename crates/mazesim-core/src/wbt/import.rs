@@ -739,12 +739,79 @@ impl<'d> Importer<'d> {
         true
     }
 
-    /// A raw robot node counts as an e-puck when its name or model says so, or when it carries
+    /// A raw robot node counts as an e-puck when its name or model says so, when it carries
     /// the e-puck's proximity sensor `ps0` or its two wheel motors (`RotationalMotor`s named
     /// `left wheel motor` and `right wheel motor`, as a two-wheeled robot built by hand in
-    /// Webots' own example worlds has). Every run decides by this one test, whether it runs the
-    /// whole world or one controller.
+    /// Webots' own example worlds has), or when it is a two-wheeled robot of its own build
+    /// ([`Importer::two_wheeled`]: the run gives it its own wheels, axle and body). Every run
+    /// decides by this one test, whether it runs the whole world or one controller.
     fn looks_like_epuck(&self, node: &'d Node) -> bool {
+        self.says_epuck(node) || self.two_wheeled(node)
+    }
+
+    /// Whether a robot node holds exactly two `RotationalMotor`s, each the device of a
+    /// `HingeJoint` among its own children (or under its `Pose`, `Transform`, `Group` and
+    /// `Solid` children, not in another joint's end point), the two joints turning about
+    /// parallel axes through distinct anchors: a differential drive, as Webots' tutorials
+    /// build one by hand (its motors named as the author likes, `motor_1` or `left_motor`).
+    fn two_wheeled(&self, node: &'d Node) -> bool {
+        const PARALLEL: f64 = 0.999;
+        let mut joints: Vec<&'d Node> = Vec::new();
+        let mut motors = 0usize;
+        let mut stack: Vec<(NodeId, bool)> = self
+            .nodes(node, "children")
+            .iter()
+            .map(|&id| (id, true))
+            .collect();
+        let mut budget = 10_000usize;
+        while let (Some((id, own)), true) = (stack.pop(), budget > 0) {
+            budget -= 1;
+            let n = self.node(id);
+            match n.type_name.as_str() {
+                "RotationalMotor" => motors += 1,
+                "HingeJoint" if own => {
+                    let device = self.nodes(n, "device").iter().map(|&d| self.node(d));
+                    if device.filter(|d| d.type_name == "RotationalMotor").count() == 1 {
+                        joints.push(n);
+                    }
+                }
+                _ => {}
+            }
+            let inside = own
+                && matches!(
+                    n.type_name.as_str(),
+                    "Pose" | "Transform" | "Group" | "Solid"
+                );
+            for field in &n.fields {
+                stack.extend(field.value.nodes.iter().map(|&child| (child, inside)));
+            }
+        }
+        let [left, right] = joints.as_slice() else {
+            return false;
+        };
+        if motors != 2 {
+            return false;
+        }
+        let axis_anchor = |joint: &'d Node| {
+            let parameters = self.nodes(joint, "jointParameters").first();
+            let field = |name: &str, default: [f64; 3]| {
+                parameters
+                    .and_then(|&p| self.numbers(self.node(p), name))
+                    .and_then(|v| <[f64; 3]>::try_from(v).ok())
+                    .unwrap_or(default)
+            };
+            (field("axis", [1.0, 0.0, 0.0]), field("anchor", [0.0; 3]))
+        };
+        let ((a, p), (b, q)) = (axis_anchor(left), axis_anchor(right));
+        let norm = |v: [f64; 3]| v.iter().map(|c| c * c).sum::<f64>().sqrt();
+        let dot: f64 = a.iter().zip(b).map(|(x, y)| x * y).sum();
+        let apart = norm([p[0] - q[0], p[1] - q[1], p[2] - q[2]]);
+        norm(a) > 0.0 && norm(b) > 0.0 && dot.abs() >= PARALLEL * norm(a) * norm(b) && apart > 0.0
+    }
+
+    /// Whether a robot node's name or model says e-puck, or it carries the e-puck's `ps0` or
+    /// its two wheel motors by their names.
+    fn says_epuck(&self, node: &'d Node) -> bool {
         let says = |field: &str| {
             self.strings(node, field).iter().any(|s| {
                 let s = s.to_ascii_lowercase();
@@ -815,6 +882,9 @@ impl<'d> Importer<'d> {
         let (model, profile) = match (node.type_name.as_str(), version_2) {
             (_, true) => ("e-puck2".to_string(), "e-puck2"),
             ("EPuck", false) => ("E-puck".to_string(), "e-puck"),
+            // A two-wheeled robot of its own build keeps its node type as its model: the run
+            // gives the e-puck's profile its wheels, axle and body.
+            (kind, false) if plain && !self.says_epuck(node) => (kind.to_string(), "e-puck"),
             (_, false) if plain => ("E-puck".to_string(), "e-puck"),
             (kind, false) => (kind.to_string(), "e-puck"),
         };

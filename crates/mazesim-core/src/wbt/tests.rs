@@ -217,6 +217,38 @@ fn a_robot_built_by_hand_with_the_e_puck_s_wheel_motors_is_an_e_puck_in_every_ru
     assert_eq!(import(&one).robots[0].profile, None);
 }
 
+/// A two-wheeled robot of its own build (motors named as its author likes, `motor_1`): each of
+/// two HingeJoints turns one about parallel axes through distinct anchors.
+fn own_build(second_axis: &str, second_anchor: &str) -> String {
+    format!(
+        "#VRML_SIM R2025a utf8\nRobot {{ translation 0.3 0 0 children [\n\
+         HingeJoint {{ jointParameters HingeJointParameters {{ axis 0 1 0 anchor 0 0.045 0.025 }}\n\
+           device [ RotationalMotor {{ name \"motor_1\" }} ] endPoint Solid {{ }} }}\n\
+         Pose {{ children [ HingeJoint {{ jointParameters HingeJointParameters {{ axis {second_axis} anchor {second_anchor} }}\n\
+           device [ RotationalMotor {{ name \"motor_2\" }} PositionSensor {{ }} ] endPoint Solid {{ }} }} ] }}\n\
+         ] controller \"drive\" }}\n"
+    )
+}
+
+#[test]
+fn a_two_wheeled_robot_of_its_own_build_is_the_robot_the_run_simulates() {
+    let w = import(&own_build("0 1 0", "0 -0.045 0.025"));
+    // Its node type is its model; the e-puck's profile, given its own wheels by the run.
+    assert_eq!(w.robot_model.as_deref(), Some("Robot"), "{:?}", w.warnings);
+    assert_eq!(w.robots[0].profile, Some("e-puck"));
+    assert!(!warned(&w, "not an e-puck"), "{:?}", w.warnings);
+    // Hinges about crossed axes (a pan and tilt head), or on one anchor, are no drive.
+    for (axis, anchor) in [("0 0 1", "0 -0.045 0.025"), ("0 1 0", "0 0.045 0.025")] {
+        let w = import(&own_build(axis, anchor));
+        assert_eq!(w.robots[0].profile, None, "{axis} {anchor}");
+        assert!(
+            warned(&w, "a robot that is not an e-puck (Robot)"),
+            "{:?}",
+            w.warnings
+        );
+    }
+}
+
 /// A supervisor's world as it runs, after it imported a robot that is not an e-puck (line 4 on:
 /// after the file's own three lines).
 const RUNNING_WITH_A_ROVER: &str = "#VRML_SIM R2023b utf8\n\
