@@ -173,6 +173,8 @@ def test_a_y_up_robot_of_a_world_before_r2022a_rolls_on_its_own_wheels(tmp_path:
     text = text.replace("axis 0 1 0 anchor 0 0.045 0.025", "axis -1 0 0 anchor -0.045 0.025 0")
     text = text.replace("axis 0 1 0 anchor 0 -0.045 0.025", "axis -1 0 0 anchor 0.045 0.025 0")
     text = text.replace("translation 0 0 0.0415", "translation 0 0.0415 0")
+    text = text.replace("translation 0 0.045 0.025", "translation -0.045 0.025 0")
+    text = text.replace("translation 0 -0.045 0.025", "translation 0.045 0.025 0")
     Path(path).write_text(text.replace("Pose", "Transform"))
     (robot,) = run_world(path, seconds=1.2).robots
     assert robot.exit_status == 0, robot.error
@@ -192,3 +194,31 @@ def test_a_run_of_its_controller_alone_rolls_it_alike(tmp_path: Path) -> None:
     assert "a two-wheeled robot of its own build" in result.stderr
     summary = json.loads((tmp_path / "out" / "summary.json").read_text())
     assert summary["final_pose"][0] == pytest.approx(62 * 0.016 * 2.0 * 0.025, abs=2e-3), summary
+
+
+def test_webots_mybot_with_the_e_puck_s_motor_names_rolls_on_its_own_wheels(
+    tmp_path: Path,
+) -> None:
+    # Webots' MyBot (samples/devices): the E-puck's motor names, both hinges anchored on the
+    # axle's midpoint, the wheels where their end points sit, 4.5 cm either side.
+    path = world(tmp_path, (2.0, 2.0), left="left wheel motor", right="right wheel motor")
+    text = Path(path).read_text().replace("anchor 0 0.045 0.025", "anchor 0 0 0.025")
+    Path(path).write_text(text.replace("anchor 0 -0.045 0.025", "anchor 0 0 0.025"))
+    _, report = import_wbt_text(Path(path).read_text(), "mybot.wbt")
+    assert report["robot_model"] == "Robot" and report["robots"][0]["profile"] == "e-puck"
+    (robot,) = run_world(path, seconds=1.2).robots
+    assert robot.exit_status == 0, robot.error
+    assert robot.final_pose[0] == pytest.approx(62 * 0.016 * 2.0 * 0.025, abs=2e-3)
+
+
+def test_a_robot_with_the_e_puck_s_wheels_keeps_the_e_puck_profile(tmp_path: Path) -> None:
+    # Wheels of 2 cm, 2.6 cm either side (the E-puck PROTO's, as an e-puck saved expanded has):
+    # the e-puck profile's numbers, measured on Webots' E-puck, stand (it turns as an axle of
+    # 0.05685 m, not the 0.052 m its anchors span).
+    path = world(tmp_path, (-1.0, 1.0))
+    text = Path(path).read_text().replace("0.045 0.025", "0.026 0.02").replace("radius 0.025", "")
+    Path(path).write_text(text.replace("height 0.01", "height 0.01 radius 0.02"))
+    (robot,) = run_world(path, seconds=1.2).robots
+    assert robot.exit_status == 0, robot.error
+    turned = math.remainder(robot.final_pose[2], math.tau)
+    assert turned == pytest.approx(62 * 0.016 * 0.02 * 2.0 / 0.05685, rel=0.02)

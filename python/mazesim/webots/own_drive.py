@@ -3,18 +3,23 @@
 Webots' tutorials build a differential-drive robot by hand: a plain ``Robot`` whose children
 hold two ``HingeJoint`` nodes, each turning a wheel (its ``endPoint`` Solid, whose
 ``boundingObject`` rolls on the floor) by a ``RotationalMotor`` named as the author likes
-(``motor_1``, ``left_motor``), beside a body of the author's size. The import takes such a robot
-for the one it simulates (the core's ``Importer::two_wheeled``: exactly two motors, each a
-hinge's, about parallel axes through distinct anchors); :func:`own_drive` reads what its node
+(``motor_1``, ``left_motor``, or the E-puck's ``left wheel motor`` as Webots' MyBot), beside a
+body of the author's size. The import takes such a robot for the one it simulates (the core's
+``Importer::two_wheeled``: exactly two motors, each a hinge's, about parallel axes, the wheels
+apart), its model its node type unless its name, its model or a ``ps0`` says it is an e-puck;
+:func:`own_drive` reads what its node
 makes of the drive, and :func:`drive_layout` writes it into the e-puck's profile, so the robot
 rolls as its own wheels roll it in Webots:
 
 - its wheel radius, the radius of each wheel's ``boundingObject`` (a ``Cylinder`` or
   ``Sphere``, under ``Pose``, ``Transform``, ``Group`` or ``Shape`` nodes and ``USE``\\ s), else
-  the height of the hinge's anchor above the robot's origin (a robot standing on its origin);
-- its axle length, how far apart the two anchors sit across the robot;
-- which wheel is the left one (the anchor further along the robot's y, its left) and which way
-  each turns it: a wheel turning by a positive speed about its axis ``a`` rolls the robot along
+  the height of the wheel (its end point, else its hinge's anchor) above the robot's origin (a
+  robot standing on its origin);
+- its axle length, how far apart the two wheels sit across the robot (their end points'
+  translations, else their hinges' anchors: Webots' MyBot puts both anchors on the axle's
+  midpoint);
+- which wheel is the left one (the one further along the robot's y, its left), whatever the
+  motors' names; a wheel turning by a positive speed about its axis ``a`` rolls the robot along
   ``a x up``, forward for an axis pointing left (``0 1 0``, as the E-puck's);
 - its body's radius: the farthest its own ``boundingObject`` reaches across the floor from its
   origin (a ``Cylinder``'s or ``Sphere``'s radius, a ``Box``'s half diagonal, plus their
@@ -22,9 +27,11 @@ rolls as its own wheels roll it in Webots:
 - its wheels' top speed, the lower of the two motors' ``maxVelocity`` (Webots' default 10
   rad/s), past which Webots holds a speed set.
 
-What the disc and the two wheels leave out is said: a body other than a cylinder or sphere, an
-axle's midpoint off the robot's origin (mazesim turns the robot about its origin), wheels of
-different radii (both roll by their mean).
+A robot whose wheels are the E-puck's (2 cm, 5.2 cm apart, within 4 mm: an e-puck saved
+expanded, or one built by hand to its size) keeps the e-puck profile as it is, whose numbers
+are measured on Webots' E-puck. What the disc and the two wheels leave out is said: a body
+other than a cylinder or sphere, an axle's midpoint off the robot's origin (mazesim turns the
+robot about its origin), wheels of different radii (both roll by their mean).
 """
 
 from __future__ import annotations
@@ -48,6 +55,12 @@ ACROSS_THE_ROBOT = 0.9
 #: How far (m) the axle's midpoint may sit from the robot's origin, or the two wheels' radii
 #: differ, before a warning says what the model leaves out.
 SAME_PLACE_M = 1e-3
+#: The E-puck PROTO's wheels: their radius and how far apart they sit (anchors at +-0.026 m).
+EPUCK_WHEEL_RADIUS = 0.02
+EPUCK_WHEEL_SPAN = 0.052
+#: How far (m) a robot's wheel radius and wheel span may be from the E-puck's for its wheels to
+#: be the E-puck's (an e-puck saved expanded, which the e-puck profile simulates as it is).
+EPUCK_LIKE_M = 0.004
 #: The node types whose ``children`` a hand-built robot's hinges may sit in, composing their
 #: poses (as the import's test walks them).
 _HOLDERS = {"Pose", "Transform", "Group", "Solid"}
@@ -114,11 +127,17 @@ def own_drive(robot: Node, y_up: bool) -> OwnDrive | str | None:
         )
     axle = abs(left.anchor[1] - right.anchor[1])
     if axle <= 0.0:
-        return "its two wheels' anchors are not apart across it"
+        return "its two wheels are not apart across it"
     warnings: list[str] = []
     radii = [wheel.radius if wheel.radius is not None else wheel.anchor[2] for wheel in wheels]
     if min(radii) <= 0.0:
-        return "a wheel has no boundingObject and its anchor is not above the robot's origin"
+        return "a wheel has no boundingObject and sits no higher than the robot's origin"
+    if (
+        abs(sum(radii) / 2 - EPUCK_WHEEL_RADIUS) <= EPUCK_LIKE_M
+        and abs(axle - EPUCK_WHEEL_SPAN) <= EPUCK_LIKE_M
+    ):
+        # An e-puck saved expanded: the profile's numbers, measured on Webots' E-puck, stand.
+        return None
     if abs(radii[0] - radii[1]) > SAME_PLACE_M:
         warnings.append(
             f"its wheels' radii differ ({radii[0]:.4f} and {radii[1]:.4f} m): both roll by "
@@ -227,7 +246,14 @@ def _wheel(joint: Node, holder: Frame, y_up: bool, resolve: Resolve) -> _Wheel |
     parameters = next(iter(_field_nodes(joint, "jointParameters")), None)
     parameters = resolve(parameters) if parameters is not None else None
     axis = _turned(holder, _vector(parameters, "axis", (1.0, 0.0, 0.0)))
-    ax, ay, az = placed(holder, _vector(parameters, "anchor", (0.0, 0.0, 0.0)))[0]
+    end = next(iter(_field_nodes(joint, "endPoint")), None)
+    end = resolve(end) if end is not None else None
+    # Where the wheel sits: its end point's translation (two hinges may share one anchor on
+    # the axle's line, as Webots' MyBot's do), else its anchor.
+    written = _vector(end, "translation", (math.nan,) * 3)
+    if any(math.isnan(v) for v in written):
+        written = _vector(parameters, "anchor", (0.0, 0.0, 0.0))
+    ax, ay, az = placed(holder, written)[0]
     anchor = (ax, ay, az)
     if y_up:
         axis, anchor = nue_to_enu(*axis), nue_to_enu(*anchor)
@@ -236,8 +262,7 @@ def _wheel(joint: Node, holder: Frame, y_up: bool, resolve: Resolve) -> _Wheel |
         return None
     # A positive speed about the axis rolls the robot along axis x up.
     roll = (axis[1] / norm, -axis[0] / norm, 0.0)
-    end = next(iter(_field_nodes(joint, "endPoint")), None)
-    radius = _round_radius(resolve(end), resolve) if end is not None else None
+    radius = _round_radius(end, resolve) if end is not None else None
     velocity = _vector(motors[0], "maxVelocity", (DEFAULT_MAX_VELOCITY,))[0]
     return _Wheel(
         motor=first_value([motors[0]], "name", Field.string) or "motor",

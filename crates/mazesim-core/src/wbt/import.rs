@@ -746,13 +746,14 @@ impl<'d> Importer<'d> {
     /// ([`Importer::two_wheeled`]: the run gives it its own wheels, axle and body). Every run
     /// decides by this one test, whether it runs the whole world or one controller.
     fn looks_like_epuck(&self, node: &'d Node) -> bool {
-        self.says_epuck(node) || self.two_wheeled(node)
+        self.says_epuck(node, true) || self.two_wheeled(node)
     }
 
     /// Whether a robot node holds exactly two `RotationalMotor`s, each the device of a
     /// `HingeJoint` among its own children (or under its `Pose`, `Transform`, `Group` and
     /// `Solid` children, not in another joint's end point), the two joints turning about
-    /// parallel axes through distinct anchors: a differential drive, as Webots' tutorials
+    /// parallel axes, their wheels (end points, else anchors) at distinct places: a differential
+    /// drive, as Webots' tutorials
     /// build one by hand (its motors named as the author likes, `motor_1` or `left_motor`).
     fn two_wheeled(&self, node: &'d Node) -> bool {
         const PARALLEL: f64 = 0.999;
@@ -792,15 +793,18 @@ impl<'d> Importer<'d> {
         if motors != 2 {
             return false;
         }
+        // Each wheel's axis, and where it sits: its end point's translation (two hinges may
+        // share one anchor on the axle's line, as Webots' MyBot's), else its anchor.
         let axis_anchor = |joint: &'d Node| {
-            let parameters = self.nodes(joint, "jointParameters").first();
-            let field = |name: &str, default: [f64; 3]| {
-                parameters
-                    .and_then(|&p| self.numbers(self.node(p), name))
+            let three = |node: Option<&NodeId>, name: &str| {
+                node.and_then(|&n| self.numbers(self.node(n), name))
                     .and_then(|v| <[f64; 3]>::try_from(v).ok())
-                    .unwrap_or(default)
             };
-            (field("axis", [1.0, 0.0, 0.0]), field("anchor", [0.0; 3]))
+            let parameters = self.nodes(joint, "jointParameters").first();
+            let at = three(self.nodes(joint, "endPoint").first(), "translation")
+                .or_else(|| three(parameters, "anchor"));
+            let axis = three(parameters, "axis").unwrap_or([1.0, 0.0, 0.0]);
+            (axis, at.unwrap_or([0.0; 3]))
         };
         let ((a, p), (b, q)) = (axis_anchor(left), axis_anchor(right));
         let norm = |v: [f64; 3]| v.iter().map(|c| c * c).sum::<f64>().sqrt();
@@ -809,9 +813,9 @@ impl<'d> Importer<'d> {
         norm(a) > 0.0 && norm(b) > 0.0 && dot.abs() >= PARALLEL * norm(a) * norm(b) && apart > 0.0
     }
 
-    /// Whether a robot node's name or model says e-puck, or it carries the e-puck's `ps0` or
-    /// its two wheel motors by their names.
-    fn says_epuck(&self, node: &'d Node) -> bool {
+    /// Whether a robot node's name or model says e-puck, or it carries the e-puck's `ps0`, or
+    /// (`wheels`) its two wheel motors by their names.
+    fn says_epuck(&self, node: &'d Node, wheels_say: bool) -> bool {
         let says = |field: &str| {
             self.strings(node, field).iter().any(|s| {
                 let s = s.to_ascii_lowercase();
@@ -831,7 +835,7 @@ impl<'d> Importer<'d> {
             if n.type_name == "DistanceSensor" && named("ps0") {
                 return true;
             }
-            if n.type_name == "RotationalMotor" {
+            if wheels_say && n.type_name == "RotationalMotor" {
                 wheels[0] |= named("left wheel motor");
                 wheels[1] |= named("right wheel motor");
                 if wheels == [true; 2] {
@@ -882,9 +886,10 @@ impl<'d> Importer<'d> {
         let (model, profile) = match (node.type_name.as_str(), version_2) {
             (_, true) => ("e-puck2".to_string(), "e-puck2"),
             ("EPuck", false) => ("E-puck".to_string(), "e-puck"),
-            // A two-wheeled robot of its own build keeps its node type as its model: the run
-            // gives the e-puck's profile its wheels, axle and body.
-            (kind, false) if plain && !self.says_epuck(node) => (kind.to_string(), "e-puck"),
+            // A two-wheeled robot that neither its name, its model nor a `ps0` says is an e-puck
+            // keeps its node type as its model: a run gives the e-puck's profile its wheels,
+            // axle and body where they are not the e-puck's.
+            (kind, false) if plain && !self.says_epuck(node, false) => (kind.to_string(), "e-puck"),
             (_, false) if plain => ("E-puck".to_string(), "e-puck"),
             (kind, false) => (kind.to_string(), "e-puck"),
         };

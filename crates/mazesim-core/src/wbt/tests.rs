@@ -90,7 +90,9 @@ fn a_body_built_y_up_and_stood_upright_in_a_z_up_file_is_read_as_y_up() {
         ] controller \"drive\" }\n\
         Robot { translation 0.5 0 0 name \"level\" controller \"other\" }\n";
     let w = import(text);
-    assert_eq!(w.robot_model.as_deref(), Some("E-puck"), "{:?}", w.warnings);
+    // The robot the run simulates; its model its node type (no name, model or ps0 says e-puck).
+    assert_eq!(w.robots[0].profile, Some("e-puck"), "{:?}", w.warnings);
+    assert_eq!(w.robot_model.as_deref(), Some("Robot"), "{:?}", w.warnings);
     let [x, y, heading] = w.robot.unwrap();
     assert!(close(x, 0.0) && close(y, 0.0), "{x} {y}");
     assert!((heading - FRAC_PI_2).abs() < 1e-4, "{heading}");
@@ -200,20 +202,26 @@ const HAND_BUILT: &str = "Robot { translation 0.1 0.2 0 name \"robot1\" controll
   boundingObject Cylinder { height 0.08 radius 0.045 } }\n";
 
 #[test]
-fn a_robot_built_by_hand_with_the_e_puck_s_wheel_motors_is_an_e_puck_in_every_run() {
+fn a_robot_built_by_hand_with_the_e_puck_s_wheel_motors_is_simulated_in_every_run() {
     let text = format!("#VRML_SIM R2021c utf8\n{HAND_BUILT}Robot {{ name \"Driver\" controller \"driver\" supervisor TRUE }}\n");
     // The whole world's import and the run of its controller alone decide alike.
     let whole = import(&text);
     let alone = WbtImport::from_text_for(&text, "test.wbt", Some("slave")).unwrap();
     for w in [&whole, &alone] {
-        assert_eq!(w.robot_model.as_deref(), Some("E-puck"), "{:?}", w.warnings);
+        // Simulated, its model its node type: its name does not say e-puck, nor does a ps0.
+        assert_eq!(w.robot_model.as_deref(), Some("Robot"), "{:?}", w.warnings);
         assert_eq!(w.robots[0].profile, Some("e-puck"));
         assert_eq!(w.robots[1].profile, None);
         assert!(!warned(w, "in its place"), "{:?}", w.warnings);
         assert!(warned(w, "line 9: Robot \"Driver\": a robot that is not an e-puck (Robot): its controller runs, its body does not move; it has no collision shape"), "{:?}", w.warnings);
     }
-    // One wheel motor of that name is not enough.
-    let one = text.replacen("right wheel motor", "arm motor", 1);
+    // One wheel motor of that name is not enough (beside a linear motor: no second wheel).
+    let one = text.replacen(
+        "RotationalMotor { name \"right wheel motor\" }",
+        "LinearMotor { name \"arm motor\" }",
+        1,
+    );
+    assert_ne!(one, text);
     assert_eq!(import(&one).robots[0].profile, None);
 }
 
