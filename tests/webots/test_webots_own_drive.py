@@ -222,3 +222,14 @@ def test_a_robot_with_the_e_puck_s_wheels_keeps_the_e_puck_profile(tmp_path: Pat
     assert robot.exit_status == 0, robot.error
     turned = math.remainder(robot.final_pose[2], math.tau)
     assert turned == pytest.approx(62 * 0.016 * 0.02 * 2.0 / 0.05685, rel=0.02)
+
+
+def test_a_robot_with_a_ps0_of_its_own_still_rolls_on_its_own_wheels(tmp_path: Path) -> None:
+    # Its sensor named ps0 makes it an e-puck by name (its model E-puck), not its wheels: they
+    # are 2.5 cm, 9 cm apart, and roll it so.
+    path = world(tmp_path, (2.0, 2.0))
+    Path(path).write_text(Path(path).read_text().replace('name "ps_0"', 'name "ps0"'))
+    _, report = import_wbt_text(Path(path).read_text(), "tutorial.wbt")
+    assert report["robot_model"] == "E-puck"
+    (robot,) = run_world(path, seconds=1.2).robots
+    assert robot.final_pose[0] == pytest.approx(62 * 0.016 * 2.0 * 0.025, abs=2e-3)

@@ -236,8 +236,8 @@ class Scene:
             the node has no such field), ``"infra-red"``, ``"sonar"`` or ``"laser"``, as
             written.
         drive: The wheels, axle and body of a plain ``Robot`` node that is a two-wheeled robot
-            of its own build, not an e-puck (:func:`~mazesim.webots.own_drive.own_drive`);
-            None for another robot.
+            of its own build, its wheels not the E-puck's
+            (:func:`~mazesim.webots.own_drive.own_drive`); None for another robot.
         drive_refused: Why such a robot's own two wheels do not drive it (the e-puck's then
             do), None otherwise.
     """
@@ -436,9 +436,9 @@ def _scene(
             scene.sensor_poses = {name: pose[:4] for name, pose in placed.items()}
             scene.sensor_heights = {name: pose[4] for name, pose in placed.items()}
             scene.sensor_types = _sensor_types(inside)
-            if robot.type_name == "Robot" and robot_model not in {None, "e-puck", *EPUCK_TYPES}:
-                # The import took it for the e-puck without its name, ps0 or wheel motors:
-                # a two-wheeled robot of its own build.
+            if robot.type_name == "Robot" and robot_model is not None:
+                # A plain Robot the import simulates: its own two wheels, where they are not
+                # the E-puck's (an e-puck saved expanded keeps the profile's numbers).
                 found = own_drive(robot, scene.body_y_up)
                 scene.drive = found if isinstance(found, OwnDrive) else None
                 scene.drive_refused = found if isinstance(found, str) else None
