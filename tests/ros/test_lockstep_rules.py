@@ -351,3 +351,32 @@ def test_the_connection_is_read_from_rospys_own_publisher() -> None:
     assert _connection_of(handed[0]) is connection and not _had_a_message(connection)
     impl.publish(String(data="step"))
     assert _had_a_message(connection)
+
+
+def test_late_connections_wait_for_every_subscription_the_master_lists_for_a_node() -> None:
+    from mazesim.ros.latched import LateConnections
+
+    # A Bug-like node subscribed scan then odom; under load its odom connection came 0.7 s
+    # after its scan connection. The master lists both: the state waits for the odom one.
+    listed = {"/bug": {"/scan", "/odom"}, "/echo": {"/pose"}}
+    late = LateConnections(0.5, 0.25, 2.0, subscriptions=lambda: listed)
+    echo, scan, odom = _Connection(), _Connection(), _Connection()
+    echo.endpoint_id, scan.endpoint_id, odom.endpoint_id = "/echo", "/bug", "/bug"
+    state = [("/pose", "pose@0"), ("/odom", "odom@0"), ("/scan", "scan@0")]
+    late.peer_subscribe("/pose", None, _sending_to(echo))
+    late.peer_subscribe("/scan", None, _sending_to(scan))
+    connected = late._last_connected
+    assert late.hand_over(state, {"/scan"}, True, now=connected + 0.6) == 0
+    late.peer_subscribe("/odom", None, _sending_to(odom))
+    connected = late._last_connected
+    assert late.hand_over(state, {"/scan"}, True, now=connected + 0.5) == 3
+    late.hand_over(state, {"/scan"}, True, now=connected + 0.8)
+    assert (echo.written, odom.written, scan.written) == (["pose@0"], ["odom@0"], ["scan@0"])
+    # A subscription the master lists that never connects holds the state the writer wait only.
+    late = LateConnections(0.5, 0.25, 2.0, subscriptions=lambda: listed)
+    scan = _Connection()
+    scan.endpoint_id = "/bug"
+    late.peer_subscribe("/scan", None, _sending_to(scan))
+    connected = late._last_connected
+    assert late.hand_over(state, {"/scan"}, True, now=connected + 1.9) == 0
+    assert late.hand_over(state, {"/scan"}, True, now=connected + 2.0) == 1

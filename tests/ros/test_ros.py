@@ -820,6 +820,29 @@ def test_a_late_subscription_gets_the_state_once_in_the_order_it_went_out(
     assert "publishing the reset state again" not in log
 
 
+@needs_ros
+def test_the_bridge_reads_each_node_s_subscriptions_from_the_master(
+    master: LocalMaster, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    # The late hand-over waits for every subscription the master lists for a node.
+    from mazesim.ros._ros import require_ros, subscriptions_of_nodes
+
+    recorder = subprocess.Popen(
+        [sys.executable, str(PROBE), "count", "pose", "1"],
+        env=master.env,
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.DEVNULL,
+    )
+    try:
+        wait_for_subscriber(master, "/pose")
+        monkeypatch.setenv("ROS_MASTER_URI", master.uri)
+        nodes = subscriptions_of_nodes(require_ros())
+        assert [topics for topics in nodes.values() if "/pose" in topics] == [{"/pose", "/clock"}]
+    finally:
+        recorder.kill()
+        recorder.communicate()
+
+
 def commands_on_sim_time(
     master: LocalMaster, tmp_path: Path, seed: int, *bridge_options: str
 ) -> tuple[list[dict[str, Any]], Path]:

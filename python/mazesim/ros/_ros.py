@@ -14,6 +14,7 @@ import sys
 import threading
 import time
 import warnings
+import xmlrpc.client
 from types import FrameType, SimpleNamespace
 from typing import Any
 
@@ -29,6 +30,7 @@ __all__ = [
     "require_ros",
     "start_node",
     "subscriber_count",
+    "subscriptions_of_nodes",
     "wait_for_master",
 ]
 
@@ -168,6 +170,25 @@ def wait_for_master(ros: Any, timeout: float) -> None:
                 f"start one with 'roscore' or set ROS_MASTER_URI"
             )
         time.sleep(0.1)
+
+
+def subscriptions_of_nodes(ros: Any) -> dict[str, set[str]]:
+    """The topics each node subscribes to, as the master lists them (``getSystemState``).
+
+    Args:
+        ros: The namespace from :func:`require_ros`.
+    """
+    with xmlrpc.client.ServerProxy(ros.rosgraph.get_master_uri()) as master:
+        answer: Any = master.getSystemState(ros.rospy.get_name())
+    code, message, state = answer
+    if code != 1:
+        raise MazesimError(f"the ROS master refused getSystemState: {message}")
+    _, subscribers, _ = state
+    nodes: dict[str, set[str]] = {}
+    for topic, names in subscribers:
+        for name in names:
+            nodes.setdefault(name, set()).add(topic)
+    return nodes
 
 
 def install_shutdown_handlers(stop: threading.Event) -> None:

@@ -26,6 +26,14 @@ the connections waiting get the state once a command writer is connected to the 
 alone). The publishers still say they are latching (the ``latching`` connection header), so
 ``rosbag`` records them as latched topics.
 
+A node's subscriptions connect one by one, each on a thread of its own; under load the last one
+came more than :data:`QUIET_S` after the first, and the node above had its scan before its odom
+subscription had connected (and then waited 5 s for the state sent again). The master knows each
+node's subscriptions before they connect (a subscription registers, then connects), so the
+state waits, up to :data:`WRITER_WAIT_S` after the last connection, until every subscription of
+the bridge's state topics that the master lists for a node with a connection waiting has
+connected (``subscriptions``: the master's subscribers, each node's topics).
+
 rospy adds a connection to its publisher before it tells the listener of it: a state published
 in between reaches the connection, and the connection then waits for that state again. So a
 connection that has had any message on its topic by the time of the hand-over (rospy's count of
@@ -67,6 +75,12 @@ def _connection_of(publish_one: Any) -> Any:
     return None
 
 
+def _node_of(connection: Any) -> str | None:
+    """The subscribing node's name that rospy keeps on ``connection`` (its ``endpoint_id``)."""
+    node = getattr(connection, "endpoint_id", None)
+    return node if isinstance(node, str) and node != "unknown" else None
+
+
 def _had_a_message(connection: Any) -> bool:
     """Whether rospy has written a message to ``connection`` (its ``stat_num_msg``)."""
     return bool(getattr(connection, "stat_num_msg", 0))
@@ -77,12 +91,18 @@ class LateConnections:
 
     rospy calls :meth:`peer_subscribe` (as a ``rospy.SubscribeListener``) when a subscription of
     one of the bridge's publishers connects, with a function that sends a message to that
-    connection only.
+    connection only. ``subscriptions`` gives the topics each node subscribes to as the master
+    lists them (None: not asked).
     """
 
     def __init__(
-        self, quiet_s: float = QUIET_S, lead_s: float = LEAD_S, writer_wait_s: float = WRITER_WAIT_S
+        self,
+        quiet_s: float = QUIET_S,
+        lead_s: float = LEAD_S,
+        writer_wait_s: float = WRITER_WAIT_S,
+        subscriptions: Callable[[], dict[str, set[str]]] | None = None,
     ) -> None:
+        self.subscriptions = subscriptions
         self.quiet_s = quiet_s
         self.lead_s = lead_s
         self.writer_wait_s = writer_wait_s
@@ -90,6 +110,8 @@ class LateConnections:
         #: The topic and the send function of each connection waiting, in connection order.
         self._waiting: list[_Waiting] = []
         self._last_connected = -float("inf")
+        #: The topics each node has connected to so far.
+        self._connected: dict[str, set[str]] = {}
         #: The connections of the sensors' topics waiting for the second part, and when.
         self._sensing: list[_Waiting] = []
         self._sensing_at = float("inf")
@@ -99,7 +121,11 @@ class LateConnections:
     def peer_subscribe(self, topic: str, publish_all: Any, publish_one: Any) -> None:
         """rospy: a subscription of ``topic`` connected; ``publish_one`` sends to it alone."""
         with self._lock:
-            self._waiting.append((topic, publish_one, _connection_of(publish_one)))
+            connection = _connection_of(publish_one)
+            self._waiting.append((topic, publish_one, connection))
+            node = _node_of(connection)
+            if node is not None:
+                self._connected.setdefault(node, set()).add(topic)
             self._last_connected = time.monotonic()
 
     def peer_unsubscribe(self, topic: str, connections: int) -> None:
@@ -122,17 +148,21 @@ class LateConnections:
     ) -> int:
         """Sends ``state`` (each message's topic and the message, in the order they went out) to
         the connections waiting, once :data:`QUIET_S` has passed since the last one connected
-        and a command writer is connected (``writer_connected``), or :data:`WRITER_WAIT_S` has
-        passed without one: the motion first, the topics of ``sensing`` (the sensors'
+        and a command writer is connected (``writer_connected``) and every subscription of a
+        state topic the master lists for a node waiting has connected, or :data:`WRITER_WAIT_S`
+        has passed without them: the motion first, the topics of ``sensing`` (the sensors'
         readings) :data:`LEAD_S` after the last motion handed over, so that a node's odometry
         callback has run before its scan callback (each connection's messages are taken on a
         thread of its own). A connection that has had a message on its topic meanwhile is left
         out. Returns how many connections it sent to."""
         now = time.monotonic() if now is None else now
         state = list(state)
+        if not writer_connected or self._subscriptions_to_come(state, now):
+            wait_s = self.writer_wait_s
+        else:
+            wait_s = self.quiet_s
         with self._lock:
             waiting: list[_Waiting] = []
-            wait_s = self.quiet_s if writer_connected else self.writer_wait_s
             if self._waiting and now - self._last_connected >= wait_s:
                 waiting, self._waiting = self._waiting, []
                 # Every reading waiting goes LEAD_S after the last motion handed over.
@@ -152,3 +182,24 @@ class LateConnections:
                         publish_one(message)
         self.handed += len(waiting)
         return len(waiting)
+
+    def _subscriptions_to_come(self, state: list[tuple[str, Any]], now: float) -> bool:
+        """Whether a node with a connection waiting has a subscription of a state topic that
+        the master lists and that has not connected yet (asked only once the quiet time has
+        passed, and not past the writer wait)."""
+        with self._lock:
+            since = now - self._last_connected
+            if self.subscriptions is None or not self._waiting:
+                return False
+            if since < self.quiet_s or since >= self.writer_wait_s:
+                return False
+            nodes = {_node_of(entry[2]) for entry in self._waiting} - {None}
+            connected = {node: set(self._connected.get(node, ())) for node in nodes if node}
+        if not nodes:
+            return False
+        try:
+            listed = self.subscriptions()
+        except Exception:  # the master busy or gone: hand over as without it
+            return False
+        topics = {topic for topic, _ in state}
+        return any((listed.get(node, set()) & topics) - connected[node] for node in connected)
