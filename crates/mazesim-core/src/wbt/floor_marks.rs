@@ -5,26 +5,29 @@
 //! `appearance.rs` for its reflection factor). A line drawn on the floor as a thin `Box`, `Cylinder`, `IndexedFaceSet` or
 //! `Mesh` (a Wavefront `.obj` file) is such a shape.
 //!
-//! Shapes no taller than [`FLOOR_MARK_HEIGHT`] that lie on the floor become floor paint of
-//! their colour's reflection factor, seen by the ground sensors; a mesh's triangles are read
-//! from its `.obj` file and painted cell by cell. Primitives in the proximity sensors' rays are
+//! Shapes whose top is below [`FLOOR_MARK_HEIGHT`] (the proximity rays' lowest point) become
+//! floor paint of their colour's reflection factor, as seen from above (later shapes over
+//! earlier ones), seen by the ground sensors and the camera; the robot drives through them as
+//! in Webots. A mesh's triangles are read from its `.obj` file and painted cell by cell. Primitives in the proximity sensors' rays are
 //! sensed-only obstacles (`sensed.rs`). Every other visual-only shape is named in a warning
 //! (nothing of the world is lost without a word).
 
 use super::floor_texture::equal_rects;
 use super::frames::{tilt, Frame, Vec3};
 use super::import::{Importer, TILT_TOLERANCE};
+use super::sensed::PROXIMITY_RAYS_LOW;
 use super::shapes::snap;
 use super::tree::Node;
 use super::WbtImport;
 use crate::world::spec::PaintSpec;
 use crate::world::values::{self, Finite, Positive, Reflectance};
 
-/// A visual-only shape whose top is at most this high (metres) is a mark on the floor: a line
-/// painted on it, or a track modelled as a sheet a few millimetres above it (one public course
-/// raises its track 7.5 mm); the e-puck's proximity sensors, about 3 cm up, pass over it, and its
-/// ground sensors and a camera tilted at the floor see it.
-pub const FLOOR_MARK_HEIGHT: f64 = 0.01;
+/// A visual-only shape whose top is below this height (metres) is a mark on the floor, seen from
+/// above: a line painted on it, a track modelled as a sheet a few millimetres above it (one
+/// public course raises its track 7.5 mm), or a road slab 1.6 cm thick with lane marks on it
+/// (one public lane follower's). The e-puck's proximity rays, 3.3 cm up at their lowest
+/// (`sensed.rs`), pass over it; its ground sensors and a camera tilted at the floor see it.
+pub const FLOOR_MARK_HEIGHT: f64 = PROXIMITY_RAYS_LOW;
 /// Tolerance below the floor (metres) for the bottom of a floor mark.
 const BELOW_FLOOR: f64 = 0.001;
 /// Side of the cells a floor mesh is painted in (metres), at the finest.
@@ -440,7 +443,7 @@ impl<'d> Importer<'d> {
 
 /// Whether a shape whose top is at `top` (metres) is a mark on the floor.
 fn on_floor(top: f64) -> bool {
-    (-BELOW_FLOOR..=FLOOR_MARK_HEIGHT).contains(&top)
+    (-BELOW_FLOOR..FLOOR_MARK_HEIGHT).contains(&top)
 }
 
 /// A point of a shape's local frame in the world.

@@ -915,7 +915,8 @@ fn test_a_line_given_as_an_obj_mesh_outside_any_solid_is_floor_paint() {
 #[test]
 fn a_track_sheet_raised_a_few_millimetres_in_a_solid_without_bounding_object_is_floor_paint() {
     // A dark sheet 7.5 mm above the floor in a Solid that collides with nothing, as a course's
-    // track PROTO models it; the same sheet 2 cm up is named instead.
+    // track PROTO models it, and the same sheet 2 cm up: both under the proximity rays. The
+    // same sheet 5 cm up is named instead.
     let sheet = |y: f64, z: f64| {
         format!(
             "Solid {{ translation 0 {y} {z} children [ Shape {{ appearance PBRAppearance {{ \
@@ -925,23 +926,44 @@ fn a_track_sheet_raised_a_few_millimetres_in_a_solid_without_bounding_object_is_
         )
     };
     let text = format!(
-        "#VRML_SIM R2022b utf8\nWorldInfo {{ }}\n{}{}E-puck {{ }}\n",
+        "#VRML_SIM R2022b utf8\nWorldInfo {{ }}\n{}{}{}E-puck {{ }}\n",
         sheet(0.0, 0.0075),
-        sheet(0.5, 0.02)
+        sheet(0.5, 0.05),
+        sheet(-0.5, 0.02),
     );
     let import = WbtImport::from_text(&text, "track.wbt").unwrap();
-    let on_track = painted_at(&import, 0.1, 0.0).expect("the raised track is paint");
-    assert!((on_track - (0.2 + 0.8 * 0.17)).abs() < 1e-9, "{on_track}");
+    for y in [0.0, -0.5] {
+        let on_track = painted_at(&import, 0.1, y).expect("the raised track is paint");
+        assert!((on_track - (0.2 + 0.8 * 0.17)).abs() < 1e-9, "{on_track}");
+    }
     assert_eq!(painted_at(&import, 0.1, 0.05), None);
     assert_eq!(painted_at(&import, 0.1, 0.5), None);
     assert!(
         import
             .warnings
             .iter()
-            .any(|w| w.starts_with("line 4: Shape") && w.contains("0.020 m above the floor")),
+            .any(|w| w.starts_with("line 4: Shape") && w.contains("0.050 m above the floor")),
         "{:?}",
         import.warnings
     );
+    assert!(import.obstacles.is_empty());
+}
+
+#[test]
+fn a_road_slab_under_the_proximity_rays_is_paint_with_its_lane_marks_on_top() {
+    // A lane follower's road: a dark visual-only slab 1.6 cm thick, a white lane mark 2 mm thick
+    // lying on it, and a block whose top is at 3.5 cm (in the proximity rays' way).
+    let text = "#VRML_SIM R2025a utf8\nWorldInfo { }\n\
+        Pose { translation 0 0 0.008 children [ Shape { appearance PBRAppearance { baseColor 0 0 0 } geometry Box { size 1.5 0.5 0.016 } } ] }\n\
+        Pose { translation 0 0 0.017 children [ Shape { appearance PBRAppearance { baseColor 1 1 1 } geometry Box { size 1.5 0.02 0.002 } } ] }\n\
+        Pose { translation 0 0.6 0.0175 children [ Shape { geometry Box { size 0.1 0.1 0.035 } } ] }\n\
+        E-puck { translation 0 -0.1 0 }\n";
+    let import = import(text);
+    assert_eq!(painted_at(&import, 0.3, -0.1), Some(0.2)); // the road, black
+    assert_eq!(painted_at(&import, 0.3, 0.0), Some(1.0)); // its lane mark, white, on top
+    assert_eq!(painted_at(&import, 0.3, 0.3), None); // beside the road
+    assert_eq!(painted_at(&import, 0.0, 0.6), None); // the block is no paint...
+    assert_eq!(import.sensed_obstacles.len(), 1); // ...but seen by the proximity rays
     assert!(import.obstacles.is_empty());
 }
 
