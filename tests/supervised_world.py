@@ -133,6 +133,14 @@ def front(supervisor: controller.Supervisor) -> float:
     return float(sum(sensor.getValue() for sensor in sensors))
 
 
+def colour_share(camera: Any, colour: tuple[int, int, int]) -> float:
+    """The share of ``camera``'s image (BGRA bytes) whose pixels are ``colour`` (red, green,
+    blue, 0-255)."""
+    image: Any = camera.getImage()
+    pixels = [tuple(image[i : i + 3][::-1]) for i in range(0, len(image), 4)]
+    return sum(1 for p in pixels if p == colour) / len(pixels)
+
+
 def run_test_world(name: str, log: Path, monkeypatch: Any) -> list[Any]:
     """Runs the tests' Webots world ``name`` for 3 s, its controllers logging into ``log``
     (``monkeypatch``: pytest's, which sets ``SWARM_LOG``): what each robot did, every

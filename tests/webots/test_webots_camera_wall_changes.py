@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from mazesim.webots.lockstep import run_world
-from supervised_world import project_of, supervisor_in
+from supervised_world import colour_share, project_of, supervisor_in
 
 #: A red wall 0.15 m ahead of an e-puck "watcher" facing +x, and a second e-puck far away.
 WORLD = """#VRML_SIM R2023b utf8
@@ -127,17 +127,11 @@ def test_a_camera_alone_in_its_world_follows_a_wall_its_supervisor_moves(tmp_pat
     camera = supervisor.getDevice("camera")
     camera.enable(32)
     red = (round(255 * 0.8), 0, 0)
-
-    def red_share() -> float:
-        image: Any = camera.getImage()
-        pixels = [tuple(image[i : i + 3][::-1]) for i in range(0, len(image), 4)]
-        return sum(1 for p in pixels if p == red) / len(pixels)
-
     supervisor.step(32)
-    assert red_share() > 0.2
+    assert colour_share(camera, red) > 0.2
     supervisor.getFromDef("GATE").getField("translation").setSFVec3f([0.8, 0.8, 0.05])
     supervisor.step(32)
-    assert red_share() == 0.0
+    assert colour_share(camera, red) == 0.0
 
 
 def test_the_live_window_of_a_world_run_draws_the_walls_where_a_supervisor_moved_them(

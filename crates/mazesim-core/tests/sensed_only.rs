@@ -217,3 +217,23 @@ fn a_solid_without_bounding_object_in_the_rays_is_sensed_only_and_read_as_webots
 fn world_text(body: &str) -> String {
     format!("format = \"mazesim-world\"\nversion = 1\nname = \"t\"\n{body}")
 }
+
+#[test]
+fn an_import_names_the_nodes_holding_each_sensed_only_wall_and_its_walls_after_the_solid_ones() {
+    // A wall Solid, a round post (a ring of walls) and a visual-only box a supervisor may move.
+    let text = "#VRML_SIM R2023b utf8\nWorldInfo { }\n\
+        Solid { translation 0.5 0 0.05 children [ Shape { geometry DEF W Box { size 0.02 0.3 0.1 } } ] boundingObject USE W }\n\
+        Solid { translation -0.5 0 0.05 children [ Shape { geometry DEF P Cylinder { radius 0.05 height 0.1 } } ] name \"post\" boundingObject USE P }\n\
+        DEF PED Solid { translation 0 0.5 0.05 children [ Shape { geometry Box { size 0.1 0.1 0.1 } } ] name \"ped\" }\n\
+        E-puck { }\n";
+    let import = WbtImport::from_text(text, "ped.wbt").unwrap();
+    let solid = import.obstacle_walls();
+    let after = solid.last().map(|&(first, n)| first + n).unwrap();
+    assert!(after > 2, "the post is a ring: {solid:?}");
+    assert_eq!(import.sensed_walls(), vec![(after, 1)]);
+    assert_eq!(import.sensed_owners, vec![vec![5]]);
+    // Those are the indices of the world's `[[walls]]` entries the sensed-only box became.
+    let spec = import.to_spec("ped");
+    assert!(spec.walls[after].sensed_only && !spec.walls[after - 1].sensed_only);
+    assert_eq!(spec.walls.len(), after + 1);
+}

@@ -255,6 +255,15 @@ fn report<'py>(py: Python<'py>, import: &WbtImport) -> PyResult<Bound<'py, PyDic
     for (d, look) in sensed_only.iter().zip(&import.sensed_looks) {
         d.set_item("reflectance", look.reflectance)?;
     }
+    let sensed_walls = import.sensed_walls();
+    for ((d, owners), (first, count)) in sensed_only
+        .iter()
+        .zip(&import.sensed_owners)
+        .zip(sensed_walls)
+    {
+        d.set_item("owners", owners.clone())?;
+        d.set_item("walls", vec![first, count])?;
+    }
     for (d, owners) in bodies.iter().zip(&import.body_owners) {
         d.set_item("owners", owners.clone())?;
     }

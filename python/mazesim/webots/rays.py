@@ -62,6 +62,8 @@ class WallBoxes:
         """A copy with the walls ``walls`` (indices) moved by the rigid motion, seen from
         above, that takes the pose ``before`` (x, y, yaw) to ``now``; this one when ``walls``
         is empty."""
+        # Boxes without the sensed-only walls (``sensed`` False) leave those out: they come last.
+        walls = [i for i in walls if i < len(self.center)]
         if not walls:
             return self
         moved = copy.copy(self)

@@ -1,7 +1,8 @@
 """What a supervisor moves when it moves a node that is not a robot's.
 
-The import report names, for each obstacle (as walls of the world) and each movable body, the
-lines of the world file's nodes that hold it (its ``owners``). A supervisor's node of one of
+The import report names, for each obstacle and each sensed-only wall (a visual-only shape the
+infra-red rays and cameras see, as walls of the world) and each movable body, the lines of the
+world file's nodes that hold it (its ``owners``). A supervisor's node of one of
 those lines holds them: setting its ``translation`` or ``rotation`` moves them all by the rigid
 motion that takes the node's old pose (seen from above) to its new one, in the simulation, at
 the next step. A node that holds one movable body and nothing else follows that body: its
@@ -56,9 +57,10 @@ class Held:
 
 def held_by_line(report: Mapping[str, Any]) -> dict[int, Held]:
     """What the nodes of each line of the world file hold, read from an import report's
-    ``obstacles`` (their ``owners`` and ``walls``) and ``bodies`` (their ``owners``)."""
+    ``obstacles`` and ``sensed_only`` walls (their ``owners`` and ``walls``) and ``bodies``
+    (their ``owners``)."""
     held: dict[int, Held] = {}
-    for obstacle in report.get("obstacles", []):
+    for obstacle in [*report.get("obstacles", []), *report.get("sensed_only", [])]:
         first, count = obstacle.get("walls", (0, 0))
         for line in obstacle.get("owners", []):
             held.setdefault(int(line), Held()).walls.extend(range(first, first + count))

@@ -66,22 +66,37 @@ pub fn circle_walls(center: [f64; 2], radius: f64, look: Look) -> Vec<WallSpec> 
         .collect()
 }
 
+/// Per obstacle, its first wall (counted from `first`) and how many walls it is: a box is one,
+/// a circle a ring of `polygon_sides`.
+fn walls_of(obstacles: &[Obstacle], mut first: usize) -> Vec<(usize, usize)> {
+    obstacles
+        .iter()
+        .map(|obstacle| {
+            let count = match *obstacle {
+                Obstacle::Box { .. } => 1,
+                Obstacle::Circle { radius, .. } => polygon_sides(radius),
+            };
+            first += count;
+            (first - count, count)
+        })
+        .collect()
+}
+
 impl WbtImport {
     /// Per obstacle, its first wall among the world's `[[walls]]` (`to_spec`'s, in order) and
     /// how many walls it is: a box is one, a circle a ring of `polygon_sides`.
     pub fn obstacle_walls(&self) -> Vec<(usize, usize)> {
-        let mut first = 0;
-        self.obstacles
-            .iter()
-            .map(|obstacle| {
-                let count = match *obstacle {
-                    Obstacle::Box { .. } => 1,
-                    Obstacle::Circle { radius, .. } => polygon_sides(radius),
-                };
-                first += count;
-                (first - count, count)
-            })
-            .collect()
+        walls_of(&self.obstacles, 0)
+    }
+
+    /// Per sensed-only obstacle, its first wall among the world's `[[walls]]` (after every
+    /// solid obstacle's, as `to_spec` lays them) and how many walls it is.
+    pub fn sensed_walls(&self) -> Vec<(usize, usize)> {
+        let solid = self
+            .obstacle_walls()
+            .last()
+            .map_or(0, |&(first, n)| first + n);
+        walls_of(&self.sensed_obstacles, solid)
     }
 
     /// The mazesim world description of this import.

@@ -149,6 +149,8 @@ pub struct Importer<'d> {
     /// rays' way, see `sensed.rs`), and how they look.
     pub sensed_obstacles: Vec<Obstacle>,
     pub sensed_looks: Vec<Look>,
+    /// Per sensed-only obstacle, the lines of the nodes that hold it.
+    pub sensed_owners: Vec<Vec<usize>>,
     /// Set while reading a visual-only shape as a sensed-only obstacle.
     pub sensing: bool,
     /// The floor's colour (see `appearance.rs`).
@@ -249,6 +251,7 @@ fn walk<'d>(
         look: Look::UNREAD,
         sensed_obstacles: Vec::new(),
         sensed_looks: Vec::new(),
+        sensed_owners: Vec::new(),
         sensing: false,
         shape_height: 0.0,
         floor_colour: None,
@@ -329,6 +332,7 @@ fn finish((mut importer, basic_time_step_ms): (Importer<'_>, f64)) -> WbtImport 
         obstacle_looks: importer.obstacle_looks,
         sensed_obstacles: importer.sensed_obstacles,
         sensed_looks: importer.sensed_looks,
+        sensed_owners: importer.sensed_owners,
         floor_colour: importer.floor_colour,
         obstacle_owners: importer.obstacle_owners,
         bodies: importer.bodies,
@@ -535,15 +539,16 @@ impl<'d> Importer<'d> {
     /// Records an obstacle, with the look of the Solid being read, held by the nodes the walk
     /// is inside.
     pub fn emit(&mut self, obstacle: Obstacle) {
+        let mut owners = self.holders.clone();
+        owners.dedup();
         if self.sensing {
             self.sensed_obstacles.push(obstacle);
             self.sensed_looks.push(self.look);
+            self.sensed_owners.push(owners);
             return;
         }
         self.obstacles.push(obstacle);
         self.obstacle_looks.push(self.look);
-        let mut owners = self.holders.clone();
-        owners.dedup();
         self.obstacle_owners.push(owners);
     }
 

@@ -159,6 +159,9 @@ pub struct WbtImport {
     pub sensed_obstacles: Vec<Obstacle>,
     /// How each of `sensed_obstacles` looks.
     pub sensed_looks: Vec<Look>,
+    /// Per sensed-only obstacle, the lines of the nodes that hold it, as `obstacle_owners`:
+    /// a supervisor moving one of those nodes moves it.
+    pub sensed_owners: Vec<Vec<usize>>,
     /// The colour of the floor, when the world gives one (see `appearance.rs`).
     pub floor_colour: Option<[f64; 3]>,
     /// Per obstacle, the lines of the nodes that hold it, outermost first (the file's node
