@@ -237,10 +237,12 @@ def test_missing_cpp_methods_and_headers_of_a_project_library_are_named(tmp_path
 
 
 def test_windows_headers_are_named_as_windows_ones(tmp_path: Path) -> None:
+    # It calls Sleep, which <windows.h> declares: it does not build here.
     source = write_source(
         tmp_path,
         "visualizer",
-        "#include <windows.h>\n#include <webots/robot.h>\nint main(void) { return 0; }\n",
+        "#include <windows.h>\n#include <webots/robot.h>\n"
+        "int main(void) { Sleep(10); return 0; }\n",
     )
     prepared = prepare_controller(str(source))
     assert not prepared.runnable
@@ -252,6 +254,25 @@ def test_windows_headers_are_named_as_windows_ones(tmp_path: Path) -> None:
     again = prepare_controller(str(source))
     assert again.missing == prepared.missing and not again.runnable
     assert "built earlier without success" in again.notes[0]
+
+
+@pytest.mark.parametrize("suffix", [".c", ".cpp"])
+def test_windows_headers_a_controller_uses_nothing_of_are_read_as_empty(
+    tmp_path: Path, suffix: str
+) -> None:
+    # Written on Windows, <Windows.h> and <conio.h> included for a Sleep and a getch since
+    # removed: it builds there, and here too.
+    source = write_source(
+        tmp_path,
+        "walker",
+        "#include <Windows.h>\n#include <conio.h>\n#include <webots/robot.h>\n"
+        "int main(void) { wb_robot_init(); wb_robot_step(32); wb_robot_cleanup(); return 0; }\n",
+        suffix,
+    )
+    prepared = prepare_controller(str(source))
+    assert prepared.runnable and prepared.missing == [], prepared.missing
+    said = "Windows' own headers it includes read as empty, as it uses nothing they declare"
+    assert f"({said}: <Windows.h>, <conio.h>)" in prepared.notes[0], prepared.notes
 
 
 def test_a_header_included_from_outside_the_folder_is_part_of_the_build(tmp_path: Path) -> None:

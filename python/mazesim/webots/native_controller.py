@@ -23,7 +23,7 @@ import subprocess
 import sys
 import tempfile
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any, Callable
 
@@ -114,6 +114,11 @@ _REDEFINED_POSIX_NAME = re.compile(
 #: The C steps' flag that builds them as X/Open C, without glibc's default BSD and POSIX
 #: extensions (M_PI stays declared).
 _POSIX_FREE = ("c", ("-D_XOPEN_SOURCE",))
+#: The build's rules, part of its cache key: a change of how controllers are built (Windows'
+#: own headers read as empty since 2) builds them anew rather than take an earlier result.
+_BUILD_RULES = "rules 2"
+#: Most builds with empty stand-ins for Windows' own headers, one more header each.
+MAX_STAND_INS = 8
 #: Most files read for their includes before a build.
 MAX_SCANNED = 500
 
@@ -183,6 +188,7 @@ def _files(folder: Path, suffixes: tuple[str, ...], recursive: bool = False) -> 
 def _key(compilers: list[str], files: list[Path], options: tuple[str, ...] = ()) -> str:
     """The build's cache key: its compilers, its files and the options its Makefile adds."""
     digest = hashlib.sha256()
+    digest.update(_BUILD_RULES.encode() + b"\0")
     if options:
         digest.update(b"options\0" + "\0".join(options).encode() + b"\0")
     for compiler in compilers:
@@ -518,6 +524,26 @@ def _build_sources(main: Path, settings: MakefileSettings) -> Build:
         )
 
     done, command = compiled()
+    read_empty = _windows_headers(done.stderr) if done.returncode != 0 else []
+    if read_empty:
+        # Windows' own headers (<windows.h>) that a controller written for Windows includes
+        # without using what they declare (left over from a Sleep since removed): built with
+        # empty stand-ins, as it builds there. When it uses any of their names, that build
+        # fails, and the failure said is the plain one: the headers are missing.
+        # The compiler stops at the first missing header: each build names the next one.
+        plain = settings
+        for _ in range(MAX_STAND_INS):
+            stand_ins = ["-I", str(_windows_stand_ins(read_empty))]
+            settings = replace(plain, compile_options=[*plain.compile_options, *stand_ins])
+            retried, again = compiled()
+            more = _windows_headers(retried.stderr) if retried.returncode != 0 else []
+            if not set(more) - set(read_empty):
+                break
+            read_empty = sorted(set(read_empty) | set(more))
+        if retried.returncode == 0:
+            done, command = retried, again
+        else:
+            settings, read_empty = plain, []
     twice = _defined_twice(done.stderr, main) if done.returncode != 0 else []
     if twice:
         # Files whose functions another file defines again (copies the main file took in):
@@ -601,6 +627,12 @@ def _build_sources(main: Path, settings: MakefileSettings) -> Build:
             f" (C built without the C library's POSIX extensions, as on Windows, since it defines "
             f"functions of their names: {names})"
         )
+    if read_empty:
+        names = ", ".join(f"<{header}>" for header in read_empty)
+        note += (
+            f" (Windows' own headers it includes read as empty, as it uses nothing they "
+            f"declare: {names})"
+        )
     if whole_library:
         note += (
             " (C++ standard names its sources use without their headers, which g++ does not "
@@ -614,6 +646,31 @@ def _build_sources(main: Path, settings: MakefileSettings) -> Build:
             f"other compilers' own headers include them: {names})"
         )
     return Build(str(target), note=note)
+
+
+def _windows_headers(stderr: str) -> list[str]:
+    """Windows' own headers (:data:`~mazesim.webots.requirements.WINDOWS_HEADERS`, any case)
+    that the compiler's errors say it cannot find."""
+    from mazesim.webots.requirements import WINDOWS_HEADERS
+
+    found = sorted(set(_NO_PROJECT_HEADER.findall(stderr)))
+    return [name for name in found if name.lower() in WINDOWS_HEADERS]
+
+
+def _windows_stand_ins(headers: list[str]) -> Path:
+    """The cache's folder of empty stand-ins for Windows' own ``headers`` and no others (a build
+    finds out which it includes), made as needed."""
+    folder = cache_folder() / "windows-stand-ins" / "+".join(sorted(headers))
+    folder.mkdir(parents=True, exist_ok=True)
+    for name in headers:
+        stand_in = folder / name
+        if not stand_in.is_file():
+            with atomic_file(stand_in) as handle:
+                handle.write(
+                    f"/* mazesim: an empty stand-in for Windows' <{name}>, for a controller "
+                    "that includes it and uses nothing it declares. */\n".encode()
+                )
+    return folder
 
 
 def _posix_names_redefined(stderr: str) -> tuple[str, ...]:
