@@ -660,7 +660,8 @@ def _windows_headers(stderr: str) -> list[str]:
 def _windows_stand_ins(headers: list[str]) -> Path:
     """The cache's folder of empty stand-ins for Windows' own ``headers`` and no others (a build
     finds out which it includes), made as needed."""
-    folder = cache_folder() / "windows-stand-ins" / "+".join(sorted(headers))
+    named = hashlib.sha256("\0".join(sorted(headers)).encode()).hexdigest()[:16]
+    folder = cache_folder() / "windows-stand-ins" / f"set-{named}"
     folder.mkdir(parents=True, exist_ok=True)
     for name in headers:
         stand_in = folder / name
