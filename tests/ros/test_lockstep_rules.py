@@ -359,7 +359,7 @@ def test_late_connections_wait_for_every_subscription_the_master_lists_for_a_nod
     # A Bug-like node subscribed scan then odom; under load its odom connection came 0.7 s
     # after its scan connection. The master lists both: the state waits for the odom one.
     listed = {"/bug": {"/scan", "/odom"}, "/echo": {"/pose"}}
-    late = LateConnections(0.5, 0.25, 2.0, subscriptions=lambda: listed)
+    late = LateConnections(0.5, 0.25, 2.0, graph=lambda: (listed, {}))
     echo, scan, odom = _Connection(), _Connection(), _Connection()
     echo.endpoint_id, scan.endpoint_id, odom.endpoint_id = "/echo", "/bug", "/bug"
     state = [("/pose", "pose@0"), ("/odom", "odom@0"), ("/scan", "scan@0")]
@@ -373,10 +373,65 @@ def test_late_connections_wait_for_every_subscription_the_master_lists_for_a_nod
     late.hand_over(state, {"/scan"}, True, now=connected + 0.8)
     assert (echo.written, odom.written, scan.written) == (["pose@0"], ["odom@0"], ["scan@0"])
     # A subscription the master lists that never connects holds the state the writer wait only.
-    late = LateConnections(0.5, 0.25, 2.0, subscriptions=lambda: listed)
+    late = LateConnections(0.5, 0.25, 2.0, graph=lambda: (listed, {}))
     scan = _Connection()
     scan.endpoint_id = "/bug"
     late.peer_subscribe("/scan", None, _sending_to(scan))
     connected = late._last_connected
     assert late.hand_over(state, {"/scan"}, True, now=connected + 1.9) == 0
     assert late.hand_over(state, {"/scan"}, True, now=connected + 2.0) == 1
+
+
+def test_late_connections_wait_for_a_command_publisher_the_master_lists_for_a_node() -> None:
+    from mazesim.ros.latched import LateConnections
+
+    # The node's subscriptions are in; its cmd_vel publisher is registered with the master but
+    # the bridge has not connected to it yet: its first answer would be lost. The state waits
+    # for it (another node's writer being connected does not count), at most 10 s.
+    subscribed = {"/bug": {"/scan", "/odom"}}
+    published = {"/bug": {"/cmd_vel"}, "/teleop": {"/cmd_vel"}}
+    late = LateConnections(0.5, 0.25, 2.0, graph=lambda: (subscribed, published))
+    scan, odom = _Connection(), _Connection()
+    scan.endpoint_id = odom.endpoint_id = "/bug"
+    late.peer_subscribe("/scan", None, _sending_to(scan))
+    late.peer_subscribe("/odom", None, _sending_to(odom))
+    connected = late._last_connected
+    state = [("/odom", "odom@0"), ("/scan", "scan@0")]
+    others = {"/cmd_vel": {"/teleop"}}
+    assert late.hand_over(state, {"/scan"}, True, now=connected + 3.0, writers=others) == 0
+    ready = {"/cmd_vel": {"/teleop", "/bug"}}
+    assert late.hand_over(state, {"/scan"}, True, now=connected + 3.1, writers=ready) == 2
+    # A publisher that never connects holds the state 10 s, then it goes.
+    late = LateConnections(0.5, 0.25, 2.0, graph=lambda: (subscribed, published))
+    again = _Connection()
+    again.endpoint_id = "/bug"
+    late.peer_subscribe("/odom", None, _sending_to(again))
+    connected = late._last_connected
+    assert late.hand_over(state, {"/scan"}, True, now=connected + 9.9, writers=others) == 0
+    assert late.hand_over(state, {"/scan"}, True, now=connected + 10.0, writers=others) == 1
+
+
+def test_the_writers_are_read_from_the_callers_rospy_names() -> None:
+    from types import SimpleNamespace
+
+    from mazesim.ros._ros import writers_connected
+
+    # rospy's subscriber connection keeps the publishing node's caller id (callerid_pub).
+    bug, teleop = SimpleNamespace(callerid_pub="/bug"), SimpleNamespace(callerid_pub="/teleop")
+    cmd_vel = SimpleNamespace(resolved_name="/cmd_vel", impl=SimpleNamespace(connections=[bug]))
+    motor = SimpleNamespace(resolved_name="/motor", impl=SimpleNamespace(connections=[teleop]))
+    idle = SimpleNamespace(resolved_name="/action", impl=SimpleNamespace(connections=[]))
+    assert writers_connected([cmd_vel, motor, idle]) == {
+        "/cmd_vel": {"/bug"},
+        "/motor": {"/teleop"},
+        "/action": set(),
+    }
+
+
+@needs_ros
+def test_rospy_keeps_the_publishers_caller_id_on_a_subscribers_connection() -> None:
+    from rospy.impl.tcpros_base import TCPROSTransport, TCPROSTransportProtocol
+
+    transport = TCPROSTransport(TCPROSTransportProtocol("/cmd_vel", None), "/cmd_vel")
+    transport._validate_header({"md5sum": "*", "type": "geometry_msgs/Twist", "callerid": "/bug"})
+    assert transport.callerid_pub == "/bug"

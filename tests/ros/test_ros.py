@@ -821,11 +821,11 @@ def test_a_late_subscription_gets_the_state_once_in_the_order_it_went_out(
 
 
 @needs_ros
-def test_the_bridge_reads_each_node_s_subscriptions_from_the_master(
+def test_the_bridge_reads_each_node_s_topics_from_the_master(
     master: LocalMaster, monkeypatch: pytest.MonkeyPatch
 ) -> None:
     # The late hand-over waits for every subscription the master lists for a node.
-    from mazesim.ros._ros import require_ros, subscriptions_of_nodes
+    from mazesim.ros._ros import require_ros, topics_of_nodes
 
     recorder = subprocess.Popen(
         [sys.executable, str(PROBE), "count", "pose", "1"],
@@ -836,8 +836,10 @@ def test_the_bridge_reads_each_node_s_subscriptions_from_the_master(
     try:
         wait_for_subscriber(master, "/pose")
         monkeypatch.setenv("ROS_MASTER_URI", master.uri)
-        nodes = subscriptions_of_nodes(require_ros())
-        assert [topics for topics in nodes.values() if "/pose" in topics] == [{"/pose", "/clock"}]
+        subscribed, published = topics_of_nodes(require_ros())
+        names = [node for node, topics in subscribed.items() if "/pose" in topics]
+        assert [subscribed[node] for node in names] == [{"/pose", "/clock"}]
+        assert "/rosout" in published[names[0]]  # every rospy node publishes its log
     finally:
         recorder.kill()
         recorder.communicate()

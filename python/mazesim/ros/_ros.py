@@ -30,8 +30,9 @@ __all__ = [
     "require_ros",
     "start_node",
     "subscriber_count",
-    "subscriptions_of_nodes",
+    "topics_of_nodes",
     "wait_for_master",
+    "writers_connected",
 ]
 
 #: Seconds a node waits for the ROS master before giving up.
@@ -172,8 +173,9 @@ def wait_for_master(ros: Any, timeout: float) -> None:
         time.sleep(0.1)
 
 
-def subscriptions_of_nodes(ros: Any) -> dict[str, set[str]]:
-    """The topics each node subscribes to, as the master lists them (``getSystemState``).
+def topics_of_nodes(ros: Any) -> tuple[dict[str, set[str]], dict[str, set[str]]]:
+    """The topics each node subscribes to and those each publishes, as the master lists them
+    (``getSystemState``).
 
     Args:
         ros: The namespace from :func:`require_ros`.
@@ -183,12 +185,27 @@ def subscriptions_of_nodes(ros: Any) -> dict[str, set[str]]:
     code, message, state = answer
     if code != 1:
         raise MazesimError(f"the ROS master refused getSystemState: {message}")
-    _, subscribers, _ = state
+    publishers, subscribers, _ = state
+    return _by_node(subscribers), _by_node(publishers)
+
+
+def _by_node(listed: list[list[Any]]) -> dict[str, set[str]]:
+    """``[[topic, [node, ...]], ...]`` as each node's topics."""
     nodes: dict[str, set[str]] = {}
-    for topic, names in subscribers:
+    for topic, names in listed:
         for name in names:
             nodes.setdefault(name, set()).add(topic)
     return nodes
+
+
+def writers_connected(subscribers: list[Any]) -> dict[str, set[str]]:
+    """The nodes whose publishers each of ``subscribers`` (rospy subscribers) is connected to,
+    by its topic: the caller id each connection's publisher sent (rospy's ``callerid_pub``)."""
+    writers: dict[str, set[str]] = {}
+    for sub in subscribers:
+        connections = list(getattr(sub.impl, "connections", None) or ())
+        writers[sub.resolved_name] = {str(getattr(c, "callerid_pub", "")) for c in connections}
+    return writers
 
 
 def install_shutdown_handlers(stop: threading.Event) -> None:

@@ -73,7 +73,7 @@ from mazesim._core import Simulator, World
 from mazesim.actions import wheel_speeds
 from mazesim.errors import InvalidArgumentError, MazesimError, _known_name, _shown
 from mazesim.ros import standard, topics
-from mazesim.ros._ros import publisher, start_node, subscriptions_of_nodes
+from mazesim.ros._ros import publisher, start_node, topics_of_nodes, writers_connected
 from mazesim.ros.bag import BagWriter
 from mazesim.ros.latched import LateConnections
 from mazesim.ros.lockstep import (
@@ -268,7 +268,7 @@ class Bridge:
         #: When a bridge nobody drives gives up (``idle_timeout``).
         self.idle = IdleTimeout(settings.idle_timeout, time.monotonic())
         #: Lockstep: the state topics' subscriptions that connected and have not had the state.
-        self.late = LateConnections(subscriptions=lambda: subscriptions_of_nodes(ros))
+        self.late = LateConnections(graph=lambda: topics_of_nodes(ros))
         self._sending_again = False
         self._sensors_layout = self._layout(topics.sensor_names(simulator))
         self._pose_layout = self._layout(["x", "y", "yaw", "time"])
@@ -729,7 +729,8 @@ class Bridge:
                 with self._lock:
                     state = [(made.resolved_name, sent) for made, sent in self.last_state]
                     writer = any(sub.get_num_connections() for sub in self.command_subscribers)
-                    self.late.hand_over(state, self.sensing, writer)
+                    writers = writers_connected(self.command_subscribers)
+                    self.late.hand_over(state, self.sensing, writer, writers=writers)
                 if self.give_up_when_idle():
                     return
                 self._resend_unanswered()

@@ -32,7 +32,11 @@ subscription had connected (and then waited 5 s for the state sent again). The m
 node's subscriptions before they connect (a subscription registers, then connects), so the
 state waits, up to :data:`WRITER_WAIT_S` after the last connection, until every subscription of
 the bridge's state topics that the master lists for a node with a connection waiting has
-connected (``subscriptions``: the master's subscribers, each node's topics).
+connected (``graph``: the master's subscribers and publishers, each node's topics). Likewise a
+node's command publisher: under load the bridge connected to it more than 2 s after the node's
+subscriptions had, the state went out, the node's answer was lost and it waited 5 s for the
+state sent again; so while the master lists a node waiting as a publisher of a command topic
+that the bridge is not connected to yet, the state waits for it, up to :data:`WRITER_COMING_S`.
 
 rospy adds a connection to its publisher before it tells the listener of it: a state published
 in between reaches the connection, and the connection then waits for that state again. So a
@@ -46,15 +50,18 @@ from __future__ import annotations
 
 import threading
 import time
-from collections.abc import Callable, Container, Iterable
+from collections.abc import Callable, Container, Iterable, Mapping
 from typing import Any
 
-__all__ = ["LEAD_S", "QUIET_S", "WRITER_WAIT_S", "LateConnections"]
+__all__ = ["LEAD_S", "QUIET_S", "WRITER_COMING_S", "WRITER_WAIT_S", "LateConnections"]
 
 #: Seconds without a new connection before the connections waiting get the state.
 QUIET_S = 0.5
 #: Seconds after the last connection the state waits for a command writer to connect.
 WRITER_WAIT_S = 2.0
+#: Seconds the state waits for a command publisher that the master lists for a node waiting
+#: and that has not connected to the bridge yet (its first command would be lost).
+WRITER_COMING_S = 10.0
 #: Seconds between the state's motion and its sensors' readings, handed to late connections.
 LEAD_S = 0.25
 
@@ -91,8 +98,8 @@ class LateConnections:
 
     rospy calls :meth:`peer_subscribe` (as a ``rospy.SubscribeListener``) when a subscription of
     one of the bridge's publishers connects, with a function that sends a message to that
-    connection only. ``subscriptions`` gives the topics each node subscribes to as the master
-    lists them (None: not asked).
+    connection only. ``graph`` gives the topics each node subscribes to and those it
+    publishes, as the master lists them (None: not asked).
     """
 
     def __init__(
@@ -100,9 +107,11 @@ class LateConnections:
         quiet_s: float = QUIET_S,
         lead_s: float = LEAD_S,
         writer_wait_s: float = WRITER_WAIT_S,
-        subscriptions: Callable[[], dict[str, set[str]]] | None = None,
+        graph: Callable[[], tuple[Mapping[str, set[str]], Mapping[str, set[str]]]] | None = None,
+        writer_coming_s: float = WRITER_COMING_S,
     ) -> None:
-        self.subscriptions = subscriptions
+        self.graph = graph
+        self.writer_coming_s = writer_coming_s
         self.quiet_s = quiet_s
         self.lead_s = lead_s
         self.writer_wait_s = writer_wait_s
@@ -145,22 +154,22 @@ class LateConnections:
         sensing: Container[str],
         writer_connected: bool = True,
         now: float | None = None,
+        writers: Mapping[str, set[str]] | None = None,
     ) -> int:
         """Sends ``state`` (each message's topic and the message, in the order they went out) to
         the connections waiting, once :data:`QUIET_S` has passed since the last one connected
-        and a command writer is connected (``writer_connected``) and every subscription of a
-        state topic the master lists for a node waiting has connected, or :data:`WRITER_WAIT_S`
-        has passed without them: the motion first, the topics of ``sensing`` (the sensors'
+        and a command writer is connected (``writer_connected``), or :data:`WRITER_WAIT_S` has
+        passed without one, and what the master lists of the nodes waiting has connected
+        (:meth:`_hold_s`; ``writers``: the nodes connected as writers of each command topic):
+        the motion first, the topics of ``sensing`` (the sensors'
         readings) :data:`LEAD_S` after the last motion handed over, so that a node's odometry
         callback has run before its scan callback (each connection's messages are taken on a
         thread of its own). A connection that has had a message on its topic meanwhile is left
         out. Returns how many connections it sent to."""
         now = time.monotonic() if now is None else now
         state = list(state)
-        if not writer_connected or self._subscriptions_to_come(state, now):
-            wait_s = self.writer_wait_s
-        else:
-            wait_s = self.quiet_s
+        wait_s = self.quiet_s if writer_connected else self.writer_wait_s
+        wait_s = max(wait_s, self._hold_s(state, now, writers))
         with self._lock:
             waiting: list[_Waiting] = []
             if self._waiting and now - self._last_connected >= wait_s:
@@ -183,23 +192,36 @@ class LateConnections:
         self.handed += len(waiting)
         return len(waiting)
 
-    def _subscriptions_to_come(self, state: list[tuple[str, Any]], now: float) -> bool:
-        """Whether a node with a connection waiting has a subscription of a state topic that
-        the master lists and that has not connected yet (asked only once the quiet time has
-        passed, and not past the writer wait)."""
+    def _hold_s(
+        self, state: list[tuple[str, Any]], now: float, writers: Mapping[str, set[str]] | None
+    ) -> float:
+        """How long after the last connection the state waits for what the master lists of the
+        nodes with a connection waiting (0: nothing): :data:`WRITER_COMING_S` while one of them
+        publishes a command topic (``writers``: each command topic's writers connected to the
+        bridge) not yet connected to the bridge, :data:`WRITER_WAIT_S` while one has a
+        subscription of a state topic not yet connected. Asked once the quiet time has passed."""
         with self._lock:
             since = now - self._last_connected
-            if self.subscriptions is None or not self._waiting:
-                return False
-            if since < self.quiet_s or since >= self.writer_wait_s:
-                return False
+            if self.graph is None or not self._waiting or since < self.quiet_s:
+                return 0.0
+            if since >= max(self.writer_wait_s, self.writer_coming_s):
+                return 0.0
             nodes = {_node_of(entry[2]) for entry in self._waiting} - {None}
             connected = {node: set(self._connected.get(node, ())) for node in nodes if node}
-        if not nodes:
-            return False
+        if not connected:
+            return 0.0
         try:
-            listed = self.subscriptions()
+            subscribed, published = self.graph()
         except Exception:  # the master busy or gone: hand over as without it
-            return False
+            return 0.0
+        writers = writers or {}
+        for node in connected:
+            commands = published.get(node, set()) & set(writers)
+            if any(node not in writers[topic] for topic in commands):
+                if since < self.writer_coming_s:
+                    return self.writer_coming_s
         topics = {topic for topic, _ in state}
-        return any((listed.get(node, set()) & topics) - connected[node] for node in connected)
+        if any((subscribed.get(node, set()) & topics) - connected[node] for node in connected):
+            if since < self.writer_wait_s:
+                return self.writer_wait_s
+        return 0.0
