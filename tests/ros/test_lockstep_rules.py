@@ -397,9 +397,9 @@ def test_late_connections_wait_for_a_command_publisher_the_master_lists_for_a_no
     late.peer_subscribe("/odom", None, _sending_to(odom))
     connected = late._last_connected
     state = [("/odom", "odom@0"), ("/scan", "scan@0")]
-    others = {"/cmd_vel": {"/teleop"}}
+    others = {"/cmd_vel": {"/teleop"}}.copy  # what the bridge would read now
     assert late.hand_over(state, {"/scan"}, True, now=connected + 3.0, writers=others) == 0
-    ready = {"/cmd_vel": {"/teleop", "/bug"}}
+    ready = {"/cmd_vel": {"/teleop", "/bug"}}.copy
     assert late.hand_over(state, {"/scan"}, True, now=connected + 3.1, writers=ready) == 2
     # A publisher that never connects holds the state 10 s, then it goes.
     late = LateConnections(0.5, 0.25, 2.0, graph=lambda: (subscribed, published))

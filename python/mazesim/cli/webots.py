@@ -202,7 +202,7 @@ def run_import(args: argparse.Namespace, out: TextIO) -> int:
         f"robot              {report['robot_model'] or 'none'} "
         f"(simulated as {report['robot_profile']})\n"
         f"extension devices  {len(report['extension_devices'])}\n"
-        f"floor paint        {report['floor_paint']} rectangles from "
+        f"floor paint        {report['floor_paint']} regions (rectangles, discs, lines) from "
         f"{len(report['floor_textures'])} floor textures\n"
         f"basic time step    {report['basic_time_step_ms']:g} ms\n"
         f"warnings           {len(report['warnings'])}\n"

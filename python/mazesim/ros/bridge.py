@@ -729,7 +729,7 @@ class Bridge:
                 with self._lock:
                     state = [(made.resolved_name, sent) for made, sent in self.last_state]
                     writer = any(sub.get_num_connections() for sub in self.command_subscribers)
-                    writers = writers_connected(self.command_subscribers)
+                    writers = functools.partial(writers_connected, self.command_subscribers)
                     self.late.hand_over(state, self.sensing, writer, writers=writers)
                 if self.give_up_when_idle():
                     return

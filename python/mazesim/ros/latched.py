@@ -154,13 +154,14 @@ class LateConnections:
         sensing: Container[str],
         writer_connected: bool = True,
         now: float | None = None,
-        writers: Mapping[str, set[str]] | None = None,
+        writers: Callable[[], Mapping[str, set[str]]] | None = None,
     ) -> int:
         """Sends ``state`` (each message's topic and the message, in the order they went out) to
         the connections waiting, once :data:`QUIET_S` has passed since the last one connected
         and a command writer is connected (``writer_connected``), or :data:`WRITER_WAIT_S` has
         passed without one, and what the master lists of the nodes waiting has connected
-        (:meth:`_hold_s`; ``writers``: the nodes connected as writers of each command topic):
+        (:meth:`_hold_s`; ``writers`` gives the nodes connected as writers of each command
+        topic, asked only while a connection waits):
         the motion first, the topics of ``sensing`` (the sensors'
         readings) :data:`LEAD_S` after the last motion handed over, so that a node's odometry
         callback has run before its scan callback (each connection's messages are taken on a
@@ -193,7 +194,10 @@ class LateConnections:
         return len(waiting)
 
     def _hold_s(
-        self, state: list[tuple[str, Any]], now: float, writers: Mapping[str, set[str]] | None
+        self,
+        state: list[tuple[str, Any]],
+        now: float,
+        writers: Callable[[], Mapping[str, set[str]]] | None,
     ) -> float:
         """How long after the last connection the state waits for what the master lists of the
         nodes with a connection waiting (0: nothing): :data:`WRITER_COMING_S` while one of them
@@ -214,10 +218,10 @@ class LateConnections:
             subscribed, published = self.graph()
         except Exception:  # the master busy or gone: hand over as without it
             return 0.0
-        writers = writers or {}
+        connected_writers = writers() if writers is not None else {}
         for node in connected:
-            commands = published.get(node, set()) & set(writers)
-            if any(node not in writers[topic] for topic in commands):
+            commands = published.get(node, set()) & set(connected_writers)
+            if any(node not in connected_writers[topic] for topic in commands):
                 if since < self.writer_coming_s:
                     return self.writer_coming_s
         topics = {topic for topic, _ in state}

@@ -8,8 +8,8 @@
 //! Shapes whose top is below [`FLOOR_MARK_HEIGHT`] (the proximity rays' lowest point) become
 //! floor paint of their colour's reflection factor, as seen from above (later shapes over
 //! earlier ones), seen by the ground sensors and the camera; the robot drives through them as
-//! in Webots. A mesh's triangles are read from its `.obj` file and painted cell by cell. Primitives in the proximity sensors' rays are
-//! sensed-only obstacles (`sensed.rs`). Every other visual-only shape is named in a warning
+//! in Webots. A mesh's triangles are read from its `.obj` file and painted cell by cell.
+//! Primitives in the proximity sensors' rays are sensed-only obstacles (`sensed.rs`). Every other visual-only shape is named in a warning
 //! (nothing of the world is lost without a word).
 
 use super::floor_texture::equal_rects;
