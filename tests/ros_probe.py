@@ -358,13 +358,17 @@ def drive_on_timer(period: float, commands: list[dict[str, Any]]) -> dict[str, A
     if not sent.wait(TIMEOUT_S):
         raise SystemExit(f"the timer sent {len(commands) - len(queue)} of {len(commands)}")
     timer.shutdown()
-    # Every state up to the end of the last command's hold (the reset state may come twice).
+    # Every state up to the end of the last command's hold (the reset state may come twice),
+    # and the /clock of the last one: it comes on a connection of its own, served by a thread of
+    # its own, and under load came after the last pose and sensors.
     states = int(sys.argv[4])
     with recorder.lock:
         if not recorder.lock.wait_for(
             lambda: (
                 len({pose[3] for pose in recorder.data["pose"]}) >= states
                 and len(recorder.data["sensors"]) >= len(recorder.data["pose"])
+                and bool(recorder.clock)
+                and recorder.clock[-1] >= recorder.data["pose"][-1][3] - 1e-9
             ),
             TIMEOUT_S,
         ):

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
+from types import SimpleNamespace
 from typing import Any
 
 import pytest
@@ -411,9 +412,41 @@ def test_late_connections_wait_for_a_command_publisher_the_master_lists_for_a_no
     assert late.hand_over(state, {"/scan"}, True, now=connected + 10.0, writers=others) == 1
 
 
-def test_the_writers_are_read_from_the_callers_rospy_names() -> None:
-    from types import SimpleNamespace
+def test_a_hand_over_is_told_in_a_line_and_a_master_not_answering_holds_the_writer_wait() -> None:
+    from mazesim.ros.latched import LateConnections
 
+    # Each hand-over says whose connections got the state, when, and what the master listed, so
+    # that a log shows why a state went out when it did.
+    subscribed = {"/bug": {"/scan"}}
+    published = {"/bug": {"/cmd_vel", "/rosout"}}
+    told: list[str] = []
+    late = LateConnections(0.5, 0.25, 2.0, graph=lambda: (subscribed, published), note=told.append)
+    scan = _Connection()
+    scan.endpoint_id = "/bug"
+    late.peer_subscribe("/scan", None, _sending_to(scan))
+    connected = late._last_connected
+    ready = {"/cmd_vel": {"/bug"}, "/motor": set()}.copy
+    assert late.hand_over([("/scan", "scan@0")], {"/scan"}, True, connected + 0.5, ready) == 1
+    assert told == [
+        "lockstep: the state handed to late subscriptions (/bug: /scan) 0.50 s after the last "
+        "connected; /bug publishes ['/cmd_vel']; command writers connected: "
+        "{'/cmd_vel': {'/bug'}, '/motor': set()}"
+    ]
+
+    # A master that does not answer: the state waits the writer wait (it went at once).
+    def refusing() -> Any:
+        raise ConnectionRefusedError("master gone")
+
+    told.clear()
+    late = LateConnections(0.5, 0.25, 2.0, graph=refusing, note=told.append)
+    late.peer_subscribe("/scan", None, _sending_to(scan))
+    connected = late._last_connected
+    assert late.hand_over([("/scan", "scan@0")], {"/scan"}, True, connected + 1.9, ready) == 0
+    assert late.hand_over([("/scan", "scan@0")], {"/scan"}, True, connected + 2.0, ready) == 1
+    assert "the master not answering (ConnectionRefusedError('master gone'))" in told[0]
+
+
+def test_the_writers_are_read_from_the_callers_rospy_names() -> None:
     from mazesim.ros._ros import writers_connected
 
     # rospy's subscriber connection keeps the publishing node's caller id (callerid_pub).
@@ -435,3 +468,28 @@ def test_rospy_keeps_the_publishers_caller_id_on_a_subscribers_connection() -> N
     transport = TCPROSTransport(TCPROSTransportProtocol("/cmd_vel", None), "/cmd_vel")
     transport._validate_header({"md5sum": "*", "type": "geometry_msgs/Twist", "callerid": "/bug"})
     assert transport.callerid_pub == "/bug"
+
+
+@needs_ros
+def test_a_node_stopping_drops_a_command_to_its_closed_topic_and_says_nothing() -> None:
+    # roslaunch's SIGINT sets the node's stop event; rospy's shutdown then closes the topics
+    # before rospy.is_shutdown() turns true, and a reading arriving meanwhile met
+    # "publish() to a closed topic": a traceback in the launch's log.
+    import threading
+
+    import rospy
+    from rospy.topics import _PublisherImpl
+    from std_msgs.msg import Float64MultiArray
+
+    from mazesim.ros._ros import publish_unless_stopping
+
+    closed = _PublisherImpl("/motor", Float64MultiArray)
+    closed.close()
+    motor = SimpleNamespace(publish=closed.publish)  # as rospy.Publisher hands a message on
+    message = Float64MultiArray(data=[1.0, 2.0])
+    stop = threading.Event()
+    assert not rospy.is_shutdown()
+    with pytest.raises(rospy.ROSException, match="closed topic"):
+        publish_unless_stopping(rospy, motor, message, stop)  # a closed topic while running
+    stop.set()
+    publish_unless_stopping(rospy, motor, message, stop)

@@ -513,7 +513,7 @@ def test_perform_learning_drives_the_seed_robot_to_the_goal(master: LocalMaster)
 
     # What the bridge reports: the goal reached, where, and that it stopped right there.
     log = Path(master.log_path("bridge")).read_text()
-    assert "Traceback" not in log
+    assert "Traceback" not in log, log[max(0, log.find("Traceback") - 400) :]
     found = GOAL_LINE.search(log)
     assert found, log
     steps, x, y = int(found[1]), float(found[3]), float(found[4])
@@ -580,7 +580,7 @@ def test_a_refused_command_steps_with_the_wheel_speeds_before(
     assert log.count("ignored a bad motor message") == 10
     assert log.count("ignored a bad action message") == 4
     assert "keeps its wheel speeds for that step" in log
-    assert "Traceback" not in log
+    assert "Traceback" not in log, log[max(0, log.find("Traceback") - 400) :]
 
 
 @needs_ros
@@ -626,7 +626,7 @@ def test_learning_launch_stops_at_the_goal_without_leftovers(
     _, reached = drive_in_process("hrl", seed=2, max_steps=int(found[1]), stop_at_goal=True)
     assert reached == int(found[1])
     assert f"goal reached at step {found[1]};" in log
-    assert "Traceback" not in log
+    assert "Traceback" not in log, log[max(0, log.find("Traceback") - 400) :]
     assert processes_with("MAZESIM_TEST_LAUNCH", tag) == []
     # record:=true: the bridge's own bag holds every step, the first ones too.
     steps = int(found[1])
@@ -805,6 +805,7 @@ def test_a_late_subscription_gets_the_state_once_in_the_order_it_went_out(
         wait_for_subscriber(master, "/pose")
         seen = run_probe(master, "scan-with-odom", "10")
         log = Path(master.log_path("bridge")).read_text()
+        print(log, *connection_lines(master), sep="\n")  # shown in full if an assertion fails
         assert seen["answered"] == pytest.approx(
             [1e-9] + [step * 0.032 for step in range(1, 10)]
         ), (seen, log)
@@ -818,6 +819,16 @@ def test_a_late_subscription_gets_the_state_once_in_the_order_it_went_out(
     poses = json.loads(out.strip().splitlines()[-1])["data"]["pose"]
     assert [round(pose[3] / 0.032) for pose in poses] == list(range(11))  # each state once
     assert "publishing the reset state again" not in log
+
+
+def connection_lines(master: LocalMaster) -> list[str]:
+    """What rospy logged of each connection added or removed, in every node's log file."""
+    return [
+        f"{path.name}: {line}"
+        for path in sorted(Path(master.log_path("bridge")).parent.rglob("*.log"))
+        for line in path.read_text(errors="replace").splitlines()
+        if "adding connection" in line or "removing connection" in line
+    ]
 
 
 @needs_ros

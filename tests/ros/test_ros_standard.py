@@ -240,7 +240,7 @@ def test_view_launch_runs_without_a_display(master: LocalMaster) -> None:
     assert stop_launch(launch) == 0
     log = Path(master.log_path("roslaunch")).read_text()
     assert "rviz not started: no display" in log
-    assert "Traceback" not in log
+    assert "Traceback" not in log, log[max(0, log.find("Traceback") - 400) :]
     assert processes_with("MAZESIM_TEST_LAUNCH", tag) == []
 
 

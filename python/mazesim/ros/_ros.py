@@ -26,6 +26,7 @@ WAITING_NOTICE_S = 5.0
 __all__ = [
     "check_ros_installed",
     "install_shutdown_handlers",
+    "publish_unless_stopping",
     "publisher",
     "require_ros",
     "start_node",
@@ -292,6 +293,27 @@ def publisher(
             subscriber_listener=late,
             headers={"latching": "1"} if late is not None else None,
         )
+
+
+def publish_unless_stopping(
+    rospy: Any, topic_publisher: Any, message: Any, stop: threading.Event
+) -> None:
+    """Publishes ``message`` from a callback; a publish that finds its topic closed once the node
+    is stopping (``stop`` set, or rospy shut down) is dropped.
+
+    roslaunch stops a node with SIGINT, which sets ``stop``; the node then shuts rospy down, whose
+    shutdown hooks close the topics before rospy says it is shut down (``rospy.is_shutdown()``
+    is still false), so a reading arriving meanwhile met "publish() to a closed topic" and its
+    callback's traceback went to the launch's log.
+
+    Raises:
+        rospy.ROSException: The topic is closed while the node is not stopping.
+    """
+    try:
+        topic_publisher.publish(message)
+    except rospy.ROSException:
+        if not (stop.is_set() or rospy.is_shutdown()):
+            raise
 
 
 def wait_for_subscribers(

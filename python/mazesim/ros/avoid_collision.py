@@ -19,7 +19,13 @@ from typing import Any
 from mazesim.controllers import AvoidCollision
 from mazesim.errors import InvalidArgumentError, _shown
 from mazesim.ros import topics
-from mazesim.ros._ros import publisher, start_node, subscriber_count, wait_for_subscribers
+from mazesim.ros._ros import (
+    publish_unless_stopping,
+    publisher,
+    start_node,
+    subscriber_count,
+    wait_for_subscribers,
+)
 
 __all__ = ["run_avoid_collision"]
 
@@ -85,12 +91,7 @@ def run_avoid_collision(
             )
             return
         left, right = controller(readings)
-        try:
-            motor.publish(ros.Float64MultiArray(data=[left, right]))
-        except rospy.ROSException:
-            # A reading that arrives while the node shuts down finds its topic closed.
-            if not rospy.is_shutdown():
-                raise
+        publish_unless_stopping(rospy, motor, ros.Float64MultiArray(data=[left, right]), stop)
 
     wait_for_subscribers(rospy, motor, subscribers, stop)
     rospy.Subscriber(

@@ -268,7 +268,7 @@ class Bridge:
         #: When a bridge nobody drives gives up (``idle_timeout``).
         self.idle = IdleTimeout(settings.idle_timeout, time.monotonic())
         #: Lockstep: the state topics' subscriptions that connected and have not had the state.
-        self.late = LateConnections(graph=lambda: topics_of_nodes(ros))
+        self.late = LateConnections(graph=lambda: topics_of_nodes(ros), note=rospy.loginfo)
         self._sending_again = False
         self._sensors_layout = self._layout(topics.sensor_names(simulator))
         self._pose_layout = self._layout(["x", "y", "yaw", "time"])

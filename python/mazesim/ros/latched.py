@@ -38,6 +38,11 @@ subscriptions had, the state went out, the node's answer was lost and it waited 
 state sent again; so while the master lists a node waiting as a publisher of a command topic
 that the bridge is not connected to yet, the state waits for it, up to :data:`WRITER_COMING_S`.
 
+Each hand-over is told in a line (``note``; the bridge logs it): whose connections got the state,
+how long after the last one connected, what the master listed of those nodes' command topics and
+which command writers the bridge was connected to. A master that does not answer holds the state
+:data:`WRITER_WAIT_S` after the last connection (it went at once before), and the line says so.
+
 rospy adds a connection to its publisher before it tells the listener of it: a state published
 in between reaches the connection, and the connection then waits for that state again. So a
 connection that has had any message on its topic by the time of the hand-over (rospy's count of
@@ -109,8 +114,14 @@ class LateConnections:
         writer_wait_s: float = WRITER_WAIT_S,
         graph: Callable[[], tuple[Mapping[str, set[str]], Mapping[str, set[str]]]] | None = None,
         writer_coming_s: float = WRITER_COMING_S,
+        note: Callable[[str], None] | None = None,
     ) -> None:
         self.graph = graph
+        #: Told each hand-over, in a line (the bridge logs it): whose connections got the state,
+        #: how long after the last one connected, and what the master and the writers said.
+        self.note = note
+        #: What the last look at the master found, for the note.
+        self._looked = "the master not asked"
         self.writer_coming_s = writer_coming_s
         self.quiet_s = quiet_s
         self.lead_s = lead_s
@@ -181,6 +192,8 @@ class LateConnections:
             sensing_due: list[_Waiting] = []
             if self._sensing and now >= self._sensing_at:
                 sensing_due, self._sensing = self._sensing, []
+        if waiting and self.note is not None:
+            self.note(self._described(waiting, now))
         waiting = [entry for entry in waiting if not _had_a_message(entry[2])]
         sensing_due = [entry for entry in sensing_due if not _had_a_message(entry[2])]
         for entries, part in ((waiting, False), (sensing_due, True)):
@@ -216,9 +229,17 @@ class LateConnections:
             return 0.0
         try:
             subscribed, published = self.graph()
-        except Exception:  # the master busy or gone: hand over as without it
-            return 0.0
+        except Exception as error:  # the master busy or gone: the writer wait, then without it
+            self._looked = f"the master not answering ({error!r})"
+            return self.writer_wait_s if since < self.writer_wait_s else 0.0
         connected_writers = writers() if writers is not None else {}
+        self._looked = (
+            "; ".join(
+                f"{node} publishes {sorted(published.get(node, set()) & set(connected_writers))}"
+                for node in sorted(connected)
+            )
+            + f"; command writers connected: {dict(sorted(connected_writers.items()))}"
+        )
         for node in connected:
             commands = published.get(node, set()) & set(connected_writers)
             if any(node not in connected_writers[topic] for topic in commands):
@@ -229,3 +250,15 @@ class LateConnections:
             if since < self.writer_wait_s:
                 return self.writer_wait_s
         return 0.0
+
+    def _described(self, waiting: list[_Waiting], now: float) -> str:
+        """One line on a hand-over: each node's topics handed the state, how long after the
+        last connection, and what the last look at the master found."""
+        topics: dict[str, list[str]] = {}
+        for topic, _, connection in waiting:
+            topics.setdefault(_node_of(connection) or "(a node not told)", []).append(topic)
+        handed = "; ".join(f"{node}: {', '.join(names)}" for node, names in topics.items())
+        return (
+            f"lockstep: the state handed to late subscriptions ({handed}) "
+            f"{now - self._last_connected:.2f} s after the last connected; {self._looked}"
+        )

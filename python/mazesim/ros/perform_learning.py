@@ -41,7 +41,13 @@ import numpy as np
 
 from mazesim.errors import InvalidArgumentError, MazesimError, _shown
 from mazesim.ros import topics
-from mazesim.ros._ros import publisher, start_node, subscriber_count, wait_for_subscribers
+from mazesim.ros._ros import (
+    publish_unless_stopping,
+    publisher,
+    start_node,
+    subscriber_count,
+    wait_for_subscribers,
+)
 
 __all__ = ["load_policy", "run_perform_learning"]
 
@@ -159,7 +165,7 @@ def run_perform_learning(
             )
             return
         code = policy.act(np.asarray(values[:6], dtype=np.float64), int(values[6]))
-        action.publish(ros.String(data=code))
+        publish_unless_stopping(rospy, action, ros.String(data=code), stop)
         published += 1
 
     rospy.Subscriber(
