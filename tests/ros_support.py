@@ -57,10 +57,13 @@ needs_ros = pytest.mark.skipif(
 )
 
 
-def run_probe(master: LocalMaster, *args: str) -> dict[str, Any]:
+def run_probe(master: LocalMaster, *args: str, namespace: str = "") -> dict[str, Any]:
+    """Runs ``ros_probe.py ARGS`` (in the ROS namespace ``namespace``, if given) to its end;
+    returns what it printed last (JSON)."""
+    env = {**master.env, "ROS_NAMESPACE": namespace} if namespace else master.env
     result = subprocess.run(
         [sys.executable, str(PROBE), *args],
-        env=master.env,
+        env=env,
         capture_output=True,
         text=True,
         timeout=600,  # a ceiling for a hang: the probe ends on the messages it counts

@@ -6,6 +6,7 @@ from __future__ import annotations
 import json
 import subprocess
 import sys
+import time
 from pathlib import Path
 from typing import Any
 
@@ -19,7 +20,7 @@ from mazesim.ros import standard, topics
 from mazesim.ros.local_master import LocalMaster
 from mazesim.ros.lockstep import stamp_nanoseconds
 from mazesim.ros.robots import frame_prefix, next_round, robot_namespaces
-from ros_support import needs_ros, spawn_bridge, topic_types
+from ros_support import needs_ros, run_probe, spawn_bridge, topic_types
 
 DRIVER = Path(__file__).with_name("several_driver.py")
 
@@ -289,3 +290,31 @@ def test_a_state_sent_again_on_several_robots_leaves_tf_out(
     assert "publishing the reset state again" in log, log
     assert len(seen["pose"]) >= 2 and set(seen["pose"]) == {0.0}, seen  # the reset state, again
     assert seen["tf"] == [1], seen  # once, at the reset state's stamp (1 ns)
+
+
+@needs_ros
+def test_a_node_connecting_late_on_several_robots_gets_the_state_once_in_order(
+    master: LocalMaster, tmp_path: Path
+) -> None:
+    # The one-robot bridge's rule for late subscriptions (LateConnections), on several robots:
+    # a Bug-like node of robot west, whose scan subscription connects before its odom one and
+    # that skips scans until an odometry has come, started about 5 s after the bridge (a slow
+    # start under load). rospy's latch gave it the scan at once, before any odometry, and the
+    # reset state went out again as it connected (counted from the bridge's start).
+    world_file = tmp_path / "three.toml"
+    world_file.write_text(THREE_ROBOTS)
+    spawn_bridge(master, "--world", str(world_file), "--seed", "3", "--duration", str(10 * 0.032))
+    deadline = time.monotonic() + 120.0
+    while "/west/scan" not in topic_types(master):
+        assert time.monotonic() < deadline, "the bridge did not come up"
+        time.sleep(0.05)
+    time.sleep(4.0)
+    seen = run_probe(master, "scan-with-odom", "10", namespace="/west")
+    log = Path(master.log_path("bridge")).read_text()
+    assert seen["answered"] == pytest.approx([1e-9] + [step * 0.032 for step in range(1, 10)]), (
+        seen,
+        log,
+    )
+    assert seen["scans"][: len(seen["answered"])] == seen["answered"], (seen, log)  # each once
+    assert "publishing the reset state again" not in log, log
+    assert "lockstep: the state handed to late subscriptions" in log, log

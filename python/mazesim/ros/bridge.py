@@ -73,9 +73,9 @@ from mazesim._core import Simulator, World
 from mazesim.actions import wheel_speeds
 from mazesim.errors import InvalidArgumentError, MazesimError, _known_name, _shown
 from mazesim.ros import standard, topics
-from mazesim.ros._ros import publisher, start_node, topics_of_nodes, writers_connected
+from mazesim.ros._ros import start_node, topics_of_nodes, writers_connected
 from mazesim.ros.bag import BagWriter
-from mazesim.ros.latched import LateConnections
+from mazesim.ros.latched import LateConnections, state_publisher
 from mazesim.ros.lockstep import (
     IDLE_CLOCK_AFTER_S,
     IDLE_EXIT_STATUS,
@@ -320,19 +320,7 @@ class Bridge:
         ]
 
     def _publisher(self, topic: str, message_class: Any) -> Any:
-        # Synchronous in lockstep: every subscriber (a recorder too) gets every step before the
-        # next command is taken. Queued in real time: a slow subscriber loses old messages.
-        # Latched; in lockstep a late subscription gets the state once, in the order it went out
-        # (LateConnections).
-        made = publisher(
-            self.ros,
-            topic,
-            message_class,
-            synchronous=self.lockstep,
-            latch=True,
-            late=self.late if self.lockstep else None,
-        )
-        return _Remembered(made, self._sent)
+        return state_publisher(self.ros, topic, message_class, self.lockstep, self.late, self._sent)
 
     def _sent(self, sent: tuple[Any, Any], on_the_wire: bool = True) -> None:
         """Notes a message that went out (publisher, message): in the last state and the bag.
@@ -645,9 +633,13 @@ class Bridge:
         only from its second message, gets another; if that goes unanswered too, ``/clock`` runs
         on its own, see :meth:`tick_idle_clock`); once stepping, the last state as it went out
         (same messages, same stamps): a controller that let one state go unanswered gets it
-        again, and the run stays the in-process run step for step. Logs it the first time."""
+        again, and the run stays the in-process run step for step. Logs it the first time.
+        Never while subscriptions that connected late wait for the state (it goes to them from
+        :class:`LateConnections`, after which the wait starts again)."""
         with self._lock:
-            if self.stop.is_set() or not self.unanswered.waited_long(time.monotonic()):
+            if self.stop.is_set() or self.late.pending:
+                return
+            if not self.unanswered.waited_long(time.monotonic()):
                 return
             connected = [sub for sub in self.command_subscribers if sub.get_num_connections() > 0]
             if not connected:
@@ -730,7 +722,8 @@ class Bridge:
                     state = [(made.resolved_name, sent) for made, sent in self.last_state]
                     writer = any(sub.get_num_connections() for sub in self.command_subscribers)
                     writers = functools.partial(writers_connected, self.command_subscribers)
-                    self.late.hand_over(state, self.sensing, writer, writers=writers)
+                    if self.late.hand_over(state, self.sensing, writer, writers=writers):
+                        self.unanswered.went_out(time.monotonic())  # to those connections
                 if self.give_up_when_idle():
                     return
                 self._resend_unanswered()
@@ -751,32 +744,6 @@ class Bridge:
                 if self._finished():
                     break
             self.stop.wait(pace.stepped(time.monotonic()))
-
-
-class _Remembered:
-    """A publisher that hands each message it publishes to ``note`` (the bridge keeps the last
-    state as it went out, to send it again); everything else is the publisher's."""
-
-    def __init__(self, made: Any, note: Callable[..., None]) -> None:
-        self.made = made
-        self._note = note
-        #: ``/tf``: the stamp its transforms last went out with.
-        self._tf_stamp: Any = None
-
-    def publish(self, message: Any) -> None:
-        if self.made.resolved_name == standard.TF_TOPIC:
-            # tf2 keeps transforms by stamp and warns of the same ones again (TF_REPEATED_DATA):
-            # the reset state sent again keeps them in the last state, off the wire.
-            stamp = message.transforms[0].header.stamp
-            if stamp == self._tf_stamp:
-                self._note((self.made, message), on_the_wire=False)
-                return
-            self._tf_stamp = stamp
-        self.made.publish(message)
-        self._note((self.made, message))
-
-    def __getattr__(self, name: str) -> Any:
-        return getattr(self.made, name)
 
 
 def refuse_several_robots(world: World) -> None:

@@ -15,7 +15,13 @@ together, in two parts as the ROS 2 bridge sends its first state: the motion (``
 :data:`LEAD_S` later. rospy takes each connection's messages on a thread of its own, so messages
 sent one after the other on two connections may be served in either order; a quarter of a
 second apart, the node above has its odometry before the scan. A connection that receives a
-newer message on its topic meanwhile (a step) is not sent the old one.
+newer message on its topic meanwhile (a step) is not sent the old one. The hand-over is a state
+going out: the bridge's wait before it sends a state unanswered again
+(:class:`~mazesim.ros.lockstep.UnansweredState`) counts from it, and does not run out while
+connections wait for it (:attr:`LateConnections.pending`). It counted from the reset state
+alone: a node whose subscriptions connected about 5 s after the bridge started (a slow start
+under load) had the reset state sent again as it connected, and a recorder that had the
+hand-over received it twice.
 
 A node that publishes its first command as soon as the state comes lost it when the bridge had
 not connected to its command publisher yet (rospy drops a message to a subscriber not yet
@@ -58,7 +64,18 @@ import time
 from collections.abc import Callable, Container, Iterable, Mapping
 from typing import Any
 
-__all__ = ["LEAD_S", "QUIET_S", "WRITER_COMING_S", "WRITER_WAIT_S", "LateConnections"]
+from mazesim.ros._ros import publisher
+from mazesim.ros.standard import TF_TOPIC
+
+__all__ = [
+    "LEAD_S",
+    "QUIET_S",
+    "WRITER_COMING_S",
+    "WRITER_WAIT_S",
+    "LateConnections",
+    "Remembered",
+    "state_publisher",
+]
 
 #: Seconds without a new connection before the connections waiting get the state.
 QUIET_S = 0.5
@@ -147,6 +164,12 @@ class LateConnections:
             if node is not None:
                 self._connected.setdefault(node, set()).add(topic)
             self._last_connected = time.monotonic()
+
+    @property
+    def pending(self) -> bool:
+        """Whether connections wait for the state, or for its sensors' part."""
+        with self._lock:
+            return bool(self._waiting or self._sensing)
 
     def peer_unsubscribe(self, topic: str, connections: int) -> None:
         """rospy: a subscription of ``topic`` went away (nothing to do: sending to a closed
@@ -262,3 +285,54 @@ class LateConnections:
             f"lockstep: the state handed to late subscriptions ({handed}) "
             f"{now - self._last_connected:.2f} s after the last connected; {self._looked}"
         )
+
+
+class Remembered:
+    """A publisher that hands each message it publishes to ``note`` (the bridge keeps the last
+    state as it went out, to send it again, and tells :class:`LateConnections` the topic went
+    out); everything else is the publisher's. ``/tf`` at the stamp it last went out with is
+    noted and kept off the wire (``on_the_wire=False``)."""
+
+    def __init__(self, made: Any, note: Callable[..., None]) -> None:
+        self.made = made
+        self._note = note
+        #: ``/tf``: the stamp its transforms last went out with.
+        self._tf_stamp: Any = None
+
+    def publish(self, message: Any) -> None:
+        if self.made.resolved_name == TF_TOPIC:
+            # tf2 keeps transforms by stamp and warns of the same ones again (TF_REPEATED_DATA):
+            # the reset state sent again keeps them in the last state, off the wire.
+            stamp = message.transforms[0].header.stamp
+            if stamp == self._tf_stamp:
+                self._note((self.made, message), on_the_wire=False)
+                return
+            self._tf_stamp = stamp
+        self.made.publish(message)
+        self._note((self.made, message))
+
+    def __getattr__(self, name: str) -> Any:
+        return getattr(self.made, name)
+
+
+def state_publisher(
+    ros: Any,
+    topic: str,
+    message_class: Any,
+    lockstep: bool,
+    late: LateConnections,
+    note: Callable[..., None],
+) -> Remembered:
+    """A publisher of a bridge's state: latched, synchronous in lockstep (every subscriber, a
+    recorder too, gets every step before the next command is taken) and queued in real time (a
+    slow subscriber loses old messages); in lockstep a late subscription gets the state from
+    ``late``, once, in the order it went out. Each message it publishes goes to ``note``."""
+    made = publisher(
+        ros,
+        topic,
+        message_class,
+        synchronous=lockstep,
+        latch=True,
+        late=late if lockstep else None,
+    )
+    return Remembered(made, note)

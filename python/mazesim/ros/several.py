@@ -22,7 +22,13 @@ in-process run of ``Simulator.step_robots`` with the same commands, whatever the
 they arrive. When no step has come ``RESEND_S`` seconds after a state went out while a command
 publisher is connected, every robot's state goes out again, ``/tf`` aside (it went out at that
 stamp already: :func:`mazesim.ros.standard.state_to_send_again`, the one-robot bridge's rule); a
-controller that commanded before the bridge listened gets another. In ``realtime`` the world
+controller that commanded before the bridge listened gets another. A subscription that connects
+after the state went out gets it once, in the order it went out, the motion first, when the
+node's subscriptions and command publisher have connected (the one-robot bridge's rule,
+:class:`mazesim.ros.latched.LateConnections`); the wait before the state goes out again counts
+from then. rospy's own latch gave a node that subscribes ``scan`` before ``odom`` the scan before
+any odometry, and a node that connected about 5 s after the bridge started had the state sent
+again as it connected: such a node of robot ``west`` never ran (a test). In ``realtime`` the world
 steps on its own with every robot's last wheel speeds.
 
 The single-robot bridge's ``command_period``, ``command_deadline``, ``stop_at_goal`` and ``bag`` and
@@ -32,6 +38,7 @@ ignore them.
 
 from __future__ import annotations
 
+import functools
 import threading
 import time
 from collections import deque
@@ -42,7 +49,8 @@ from mazesim._core import Simulator
 from mazesim.actions import wheel_speeds
 from mazesim.errors import InvalidArgumentError, _shown
 from mazesim.ros import standard, topics
-from mazesim.ros._ros import publisher
+from mazesim.ros._ros import topics_of_nodes, writers_connected
+from mazesim.ros.latched import LateConnections, state_publisher
 from mazesim.ros.lockstep import IdleTimeout, RealTimePace, UnansweredState, stamp_nanoseconds
 from mazesim.ros.robots import RobotOf, frame_prefix, robot_namespaces, step_rounds
 
@@ -158,6 +166,13 @@ class RobotChannel:
             made.publish(message)
         return sent
 
+    def sensing(self) -> list[str]:
+        """The topics of the robot's sensors' readings (a late subscription gets them after the
+        motion)."""
+        made = [self.sensors, self.sensor_data, *self.standard.range_publishers]
+        made.append(self.standard.scan_publisher)
+        return [one.resolved_name for one in made if one is not None]
+
 
 class SeveralRobotsBridge:
     """Publishes each robot of a simulator in its namespace and steps the world on their
@@ -178,6 +193,9 @@ class SeveralRobotsBridge:
         #: When a bridge nobody drives gives up (``idle_timeout``).
         self.idle = IdleTimeout(settings.idle_timeout, time.monotonic())
         self.last_state: list[tuple[Any, Any]] = []
+        #: Lockstep: the state topics' subscriptions that connected and have not had the state
+        #: (the one-robot bridge's rule: once, in the order it went out).
+        self.late = LateConnections(graph=lambda: topics_of_nodes(ros), note=ros.rospy.loginfo)
         self.clock_publisher = self.make_publisher(topics.CLOCK_TOPIC, ros.Clock)
         namespaces = robot_namespaces(simulator.robot_names)
         self.robots = [
@@ -192,13 +210,23 @@ class SeveralRobotsBridge:
         )
         self.tf_static_publisher.publish(ros.TFMessage(transforms=static))
         self.map_publisher = standard.latched_map(ros, simulator.world)
+        self.sensing = {topic for robot in self.robots for topic in robot.sensing()}
         self.publish_state()
         self.unanswered.went_out(time.monotonic())
 
     def make_publisher(self, topic: str, message_class: Any = None) -> Any:
-        """A latched publisher, synchronous in lockstep (every subscriber gets every step)."""
+        """A latched publisher, synchronous in lockstep (every subscriber gets every step); in
+        lockstep a late subscription gets the state once, in the order it went out
+        (:class:`~mazesim.ros.latched.LateConnections`). What it publishes goes in the last
+        state."""
         kind = message_class if message_class is not None else self.ros.Float64MultiArray
-        return publisher(self.ros, topic, kind, synchronous=self.lockstep, latch=True)
+        return state_publisher(self.ros, topic, kind, self.lockstep, self.late, self._sent)
+
+    def _sent(self, sent: tuple[Any, Any], on_the_wire: bool = True) -> None:
+        """Notes a message that went out (publisher, message) in the last state."""
+        self.last_state.append(sent)
+        if on_the_wire:
+            self.late.published(sent[0].resolved_name)
 
     def layout(self, labels: list[str]) -> Any:
         layout = self.ros.Float64MultiArray().layout
@@ -215,13 +243,12 @@ class SeveralRobotsBridge:
         nanoseconds = stamp_nanoseconds(self.simulator.time)
         stamp = self.ros.rospy.Time(nanoseconds // 10**9, nanoseconds % 10**9)
         clock = self.ros.Clock(clock=stamp)
+        self.last_state = []
         self.clock_publisher.publish(clock)
         moved = [made for robot in self.robots for made in robot.standard.publish(stamp)]
-        transforms = self.ros.TFMessage(transforms=moved)
-        self.tf_publisher.publish(transforms)
-        self.last_state = [(self.clock_publisher, clock), (self.tf_publisher, transforms)]
+        self.tf_publisher.publish(self.ros.TFMessage(transforms=moved))
         for robot in self.robots:
-            self.last_state += robot.publish(self)
+            robot.publish(self)
 
     def command(
         self, robot: RobotChannel, topic: str, read: Callable[[], tuple[float, float]]
@@ -267,7 +294,9 @@ class SeveralRobotsBridge:
     def _resend_unanswered(self) -> None:
         """Lockstep: the state again when none answered it (see the module's description)."""
         with self._lock:
-            if self.stop.is_set() or not self.unanswered.waited_long(time.monotonic()):
+            if self.stop.is_set() or self.late.pending:
+                return  # connections waiting for the state get it from LateConnections
+            if not self.unanswered.waited_long(time.monotonic()):
                 return
             waiting = [robot for robot in self.robots if robot.driven() and not robot.pending]
             if not waiting:
@@ -282,7 +311,20 @@ class SeveralRobotsBridge:
                 self.ros.rospy.logwarn(notice)
             for made, message in standard.state_to_send_again(self.last_state):
                 made.publish(message)
+                self.late.published(made.resolved_name)
             self.unanswered.went_out(time.monotonic())
+
+    def _hand_over(self) -> None:
+        """Lockstep: the state to the subscriptions that connected late, once, in the order it
+        went out (:class:`~mazesim.ros.latched.LateConnections`); the wait before the state goes
+        out again counts from it."""
+        with self._lock:
+            state = [(made.resolved_name, message) for made, message in self.last_state]
+            subscribers = [sub for robot in self.robots for sub in robot.subscribers]
+            writer = any(robot.driven() for robot in self.robots)
+            writers = functools.partial(writers_connected, subscribers)
+            if self.late.hand_over(state, self.sensing, writer, writers=writers):
+                self.unanswered.went_out(time.monotonic())
 
     def finish(self) -> tuple[int, float]:
         """Stops stepping; returns the steps and simulated time."""
@@ -311,6 +353,7 @@ class SeveralRobotsBridge:
             while not self.stop.wait(0.1) and not rospy.is_shutdown():
                 if self.give_up_when_idle():
                     return
+                self._hand_over()
                 self._resend_unanswered()
             return
         pace = RealTimePace(
