@@ -64,6 +64,7 @@ import time
 from collections.abc import Callable, Container, Iterable, Mapping
 from typing import Any
 
+from mazesim.errors import _shown
 from mazesim.ros._ros import publisher
 from mazesim.ros.standard import TF_TOPIC
 
@@ -253,7 +254,7 @@ class LateConnections:
         try:
             subscribed, published = self.graph()
         except Exception as error:  # the master busy or gone: the writer wait, then without it
-            self._looked = f"the master not answering ({error!r})"
+            self._looked = f"the master not answering ({_shown(error)})"
             return self.writer_wait_s if since < self.writer_wait_s else 0.0
         connected_writers = writers() if writers is not None else {}
         self._looked = (
