@@ -271,7 +271,10 @@ stamp = lambda m: m.transforms[0].header.stamp.to_nsec()
 rospy.Subscriber("/tf", TFMessage, lambda m: seen["tf"].append(stamp(m)))
 rospy.Subscriber("/west/pose", Float64MultiArray, lambda m: seen["pose"].append(m.data[3]))
 motor = rospy.Publisher("/west/motor", Float64MultiArray, queue_size=1)
-time.sleep(7.5)
+deadline = time.monotonic() + 60.0  # the state again comes 5 s after the hand-over to it
+while len(seen["pose"]) < 2 and time.monotonic() < deadline:
+    time.sleep(0.05)
+time.sleep(0.5)  # a /tf sent with it would have come by now
 print(json.dumps(seen))
 """
 
@@ -281,8 +284,9 @@ def test_a_state_sent_again_on_several_robots_leaves_tf_out(
     master: LocalMaster, tmp_path: Path
 ) -> None:
     # The reset state went unanswered while a command writer was connected: the bridge sends
-    # it again after 5 s, every robot's topics but /tf, which went out at that stamp already
-    # (tf2 warns TF_REPEATED_DATA of a transform again at one stamp), as the one-robot bridge.
+    # it again 5 s after it went out to the writer, every robot's topics but /tf, which went out
+    # at that stamp already (tf2 warns TF_REPEATED_DATA of a transform again at one stamp), as
+    # the one-robot bridge.
     world_file = tmp_path / "three.toml"
     world_file.write_text(THREE_ROBOTS)
     seen, _ = _beside_bridge(master, ["--world", str(world_file)], "-c", _SILENT_WRITER)

@@ -49,8 +49,8 @@ from mazesim._core import Simulator
 from mazesim.actions import wheel_speeds
 from mazesim.errors import InvalidArgumentError, _shown
 from mazesim.ros import standard, topics
-from mazesim.ros._ros import topics_of_nodes, writers_connected
-from mazesim.ros.latched import LateConnections, state_publisher
+from mazesim.ros._ros import publisher, topics_of_nodes, writers_connected
+from mazesim.ros.latched import LateConnections, Remembered, state_publisher
 from mazesim.ros.lockstep import IdleTimeout, RealTimePace, UnansweredState, stamp_nanoseconds
 from mazesim.ros.robots import RobotOf, frame_prefix, robot_namespaces, step_rounds
 
@@ -203,7 +203,15 @@ class SeveralRobotsBridge:
             for index, namespace in enumerate(namespaces)
         ]
         # Every robot's transforms in one message: a latched topic keeps only the last one.
-        self.tf_publisher = self.make_publisher(standard.TF_TOPIC, ros.TFMessage)
+        # On rospy's own latch, not handed over late: tf2 keeps transforms by stamp, so a
+        # listener connecting late needs the last ones at once, whatever else it has had (handed
+        # over with the rest, a listener whose /tf connection came after the others' hand-over
+        # had the next step first and never the reset state's transforms: a lookup at its stamp
+        # failed). /tf is never sent again (state_to_send_again), so nothing comes twice.
+        self.tf_publisher = Remembered(
+            publisher(ros, standard.TF_TOPIC, ros.TFMessage, synchronous=self.lockstep, latch=True),
+            self._sent,
+        )
         static = [made for robot in self.robots for made in robot.standard.static_transforms()]
         self.tf_static_publisher = ros.rospy.Publisher(
             standard.TF_STATIC_TOPIC, ros.TFMessage, queue_size=1, latch=True
