@@ -25,11 +25,12 @@ stamp already: :func:`mazesim.ros.standard.state_to_send_again`, the one-robot b
 controller that commanded before the bridge listened gets another. A subscription that connects
 after the state went out gets it once, in the order it went out, the motion first, when the
 node's subscriptions and command publisher have connected (the one-robot bridge's rule,
-:class:`mazesim.ros.latched.LateConnections`); the wait before the state goes out again counts
-from then. rospy's own latch gave a node that subscribes ``scan`` before ``odom`` the scan before
-any odometry, and a node that connected about 5 s after the bridge started had the state sent
-again as it connected: such a node of robot ``west`` never ran (a test). In ``realtime`` the world
-steps on its own with every robot's last wheel speeds.
+:class:`mazesim.ros.latched.LateConnections`), ``/tf`` aside (on rospy's latch: a tf2 listener
+connecting late has the last transforms at once); the wait before the state goes out again
+counts from then. rospy's own latch gave a node that subscribes ``scan`` before ``odom`` the
+scan before any odometry, and a node that connected about 5 s after the bridge started had the
+state sent again as it connected: such a node of robot ``west`` never ran (a test). In
+``realtime`` the world steps on its own with every robot's last wheel speeds.
 
 The single-robot bridge's ``command_period``, ``command_deadline``, ``stop_at_goal`` and ``bag`` and
 the reset services are not offered on several robots: the bridge refuses those settings rather than
