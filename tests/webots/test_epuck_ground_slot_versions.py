@@ -8,7 +8,8 @@ Transform 3 cm forward (``translation 0 0.0003 -0.03``, the robot facing -z) tur
 the left), 3 mm up, each turned ``0 0 1 -1.57`` so that its x axis points at the floor. Since
 R2022a (Z-up) the slot is ``translation 0.03 0 0.0003``, unturned, and the module's default
 rotation is ``0 0 1 0``. In both, gs0 is 1 cm left of the middle, gs2 1 cm right, 3 cm ahead of
-the centre, looking down: a dark strip under the robot's front left darkens gs0 alone.
+the centre, looking down: a dark strip under the robot's front left darkens gs0 alone. A sensor
+the slot holds tilted less far down meets the floor ahead of it, or a wall nearer than that.
 """
 
 from __future__ import annotations
@@ -78,3 +79,49 @@ def test_an_infra_red_sensor_in_the_slot_reads_the_floor_from_its_0_3_mm(tmp_pat
     down, tilted = (sensor.getValue() for sensor in sensors)
     assert down == pytest.approx(3.0, abs=0.01)
     assert tilted == pytest.approx(3.0 / math.sin(1.7017), abs=0.01)
+
+
+#: What lies ahead of a sensor 1 cm up, tilted 15 degrees down at the slot's 3 cm ahead: its ray
+#: meets the floor 0.01 / sin(0.2618) = 3.86 cm away, 3.73 cm ahead of it (x = 0.0673).
+AHEAD = {
+    "white floor": ("", 386.4),
+    # A black patch where the ray meets the floor: reflection factor 0.2, so 0.193 m, beyond
+    # the default table's 0.1 m (1000).
+    "black patch": (
+        "Transform { translation 0.0673 0 0.0005 children [ Shape {\n"
+        "  appearance PBRAppearance { baseColor 0 0 0 roughness 1 metalness 0 }\n"
+        "  geometry Box { size 0.03 0.04 0.001 } } ] }\n",
+        1000.0,
+    ),
+    # A white wall 2 cm ahead of the sensor, nearer than the floor: 0.02 / cos(0.2618).
+    "wall": (
+        "Solid { translation 0.055 0 0.025 children [ DEF B Shape {\n"
+        "  appearance PBRAppearance { baseColor 1 1 1 roughness 0 metalness 0 }\n"
+        "  geometry Box { size 0.01 0.2 0.05 } } ] boundingObject USE B }\n",
+        207.06,
+    ),
+}
+
+
+@pytest.mark.parametrize("case", sorted(AHEAD))
+def test_a_sensor_tilted_a_little_down_reads_the_floor_ahead_or_a_nearer_wall(
+    tmp_path: Path, case: str
+) -> None:
+    # A hand-made line sensor tilted 15 degrees down (less than the 45 at which a sensor reads
+    # only the floor) meets the floor a few centimetres ahead, as Webots' 3D ray does: on white
+    # it reads 386, on a black line 1000; a wall nearer than that point is what it meets.
+    scenery, expected = AHEAD[case]
+    text = (
+        "#VRML_SIM R2025a utf8\nWorldInfo { basicTimeStep 16 }\n"
+        "RectangleArena { floorSize 2 2\n"
+        "  floorAppearance PBRAppearance { baseColor 1 1 1 roughness 0 metalness 0 } }\n"
+        f"{scenery}"
+        'E-puck { supervisor TRUE controller "<extern>" groundSensorsSlot [\n'
+        '  DistanceSensor { translation 0 0 0.0097 rotation 0 1 0 0.2618 name "ir"\n'
+        '    type "infra-red" } ] }\n'
+    )
+    robot = supervisor_in(tmp_path, text, noise=False)
+    sensor = robot.getDevice("ir")
+    sensor.enable(16)
+    robot.step(16)
+    assert sensor.getValue() == pytest.approx(expected, abs=0.5)
