@@ -233,7 +233,13 @@ def extension_device(simulation: RobotSimulation, entry: Mapping[str, Any]) -> D
         "InertialUnit": lambda: InertialUnit(name, simulation, mount, None),
         "TouchSensor": lambda: TouchSensor(name, simulation, mount, _bumper(simulation, name)),
         "DistanceSensor": lambda: RayDistanceSensor(
-            name, simulation, mount, table, str(fields.get("type", "generic")), aperture
+            name,
+            simulation,
+            mount,
+            table,
+            str(fields.get("type", "generic")),
+            aperture,
+            _number_field(fields, "redColorSensitivity", 1.0),
         ),
         "LightSensor": lambda: (
             LightSensor(name, simulation, table, mount)

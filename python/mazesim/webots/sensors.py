@@ -584,7 +584,9 @@ DISTANCE_SENSOR_APERTURE = 1.5708
 
 class RayDistanceSensor(DistanceSensor):
     """A distance sensor the world adds: one ray from its mount against the walls (a
-    :class:`DistanceSensor`, with the world's table, type and aperture)."""
+    :class:`DistanceSensor`, with the world's table, type, aperture and, of an infra-red one,
+    ``redColorSensitivity``: how much of the reflection factor ``f`` it applies, the distance
+    ``d`` read as ``d + (d / f - d) * sensitivity``, Webots' DistanceSensor; 1 by default)."""
 
     def __init__(
         self,
@@ -594,9 +596,11 @@ class RayDistanceSensor(DistanceSensor):
         table: Sequence[Sequence[float]] | None = None,
         sensor_type: str = "generic",
         aperture: float = DISTANCE_SENSOR_APERTURE,
+        red_sensitivity: float = 1.0,
     ) -> None:
         _ScalarSensor.__init__(self, name, simulation)
         self._aperture = aperture
+        self._red_sensitivity = red_sensitivity
         self._mount = mount
         self._table = LookupTable(DISTANCE_TABLE if not table else table)
         self._type = DISTANCE_SENSOR_TYPES.get(sensor_type, self.GENERIC)
@@ -620,9 +624,19 @@ class RayDistanceSensor(DistanceSensor):
         factor = float(reflectance[0])
         if pitch > 0.0 and self._mount.z > 0.0 and self._mount.z / math.sin(pitch) < min(d, reach):
             d, factor = self._floor_hit()
-        if self._type == self.INFRA_RED and math.isfinite(d):
-            d = d / max(factor, 1e-6)
+        if math.isfinite(d):
+            d = self._reflected(d, factor)
         return self._table(min(d, reach), self._rng)
+
+    def _reflected(self, d: float, factor: float) -> float:
+        """The distance an infra-red sensor reads for a surface ``d`` away of reflection factor
+        ``factor`` (a sensor of another type reads ``d``)."""
+        if self._type != self.INFRA_RED:
+            return d
+        reflected = d / max(factor, 1e-6)
+        if self._red_sensitivity == 1.0:
+            return reflected
+        return d + (reflected - d) * self._red_sensitivity
 
     def _floor_hit(self) -> tuple[float, float]:
         """How far the ray goes to the floor and the floor's reflection factor where it meets
@@ -642,9 +656,7 @@ class RayDistanceSensor(DistanceSensor):
         infra-red sensor's distance to it (:meth:`_floor_hit`) is divided by the floor's
         reflectance there, as for walls."""
         d, factor = self._floor_hit()
-        if self._type == self.INFRA_RED:
-            d = d / max(factor, 1e-6)
-        return self._table(min(d, self.getMaxRange()), self._rng)
+        return self._table(min(self._reflected(d, factor), self.getMaxRange()), self._rng)
 
     def getType(self) -> int:
         """The sensor type from the world (``GENERIC`` by default)."""

@@ -31,10 +31,12 @@
 //! the factor of that colour's red times the appearance's own (the texture's colour multiplies
 //! the appearance's, as Webots picks it), with the appearance's roughness, and the camera's
 //! colour of that mean colour times the appearance's; without the image the wall stays white
-//! and grey.
+//! and grey. The floor of a colour read reflects by its appearance too (a white floor of
+//! `roughness 1`, 0.6); one of no colour read (a texture, an appearance PROTO), as white.
 
 use std::collections::BTreeMap;
 
+use super::frames::Frame;
 use super::import::Importer;
 use super::tree::Node;
 use super::WbtImport;
@@ -156,7 +158,7 @@ impl<'d> Importer<'d> {
 
     /// The red an appearance node gives the infra-red sensors (a texture counted white) and
     /// its roughness (see the module).
-    fn appearance_red(&mut self, appearance: &'d Node) -> (f64, f64) {
+    pub(super) fn appearance_red(&mut self, appearance: &'d Node) -> (f64, f64) {
         match appearance.type_name.as_str() {
             "PBRAppearance" => {
                 let base = self.vector(appearance, "baseColor", [1.0; 3])[0];
@@ -313,12 +315,25 @@ impl<'d> Importer<'d> {
         look.unwrap_or(Look::UNREAD)
     }
 
-    /// Keeps the first floor colour the world gives (a `RectangleArena`'s `floorAppearance`, a
-    /// `Floor`'s `appearance`).
-    pub fn floor_colour_of(&mut self, node: &'d Node, field: &str) {
-        if self.floor_colour.is_none() {
-            self.floor_colour = self.field_colour(node, field);
+    /// The look of a floor (a `RectangleArena`'s `floorAppearance`, a `Floor`'s `appearance`,
+    /// `size` along `frame`'s x and y): the world's first floor gives the floor its colour and
+    /// reflection factor when the import reads them (else the floor stays white); a later one
+    /// of a colour read lies on it as a floor mark of its rectangle (a patch of black floor a
+    /// maze lays in its middle for the ground sensors to find).
+    pub fn floor_look_of(&mut self, node: &'d Node, field: &str, frame: &Frame, size: [f64; 2]) {
+        let look = self.field_look(node, field);
+        if !self.floor_seen {
+            self.floor_seen = true;
+            if let Some(look) = look {
+                self.floor_colour = look.colour;
+                self.floor_reflectance = Some(look.reflectance);
+            }
+            return;
         }
+        let Some(look) = look else {
+            return;
+        };
+        self.mark_rectangle(frame, size, look.reflectance, look.colour);
     }
 }
 
@@ -562,6 +577,51 @@ mod tests {
         assert_eq!(colours.len(), 6);
         assert_eq!(colours[4], Some([1.0, 0.0, 0.0]));
         assert_eq!(world.floor_colour(), Some([0.0, 0.0, 1.0]));
+    }
+
+    #[test]
+    fn a_floor_of_a_colour_read_reflects_by_its_red_and_roughness() {
+        // Webots' factor for the floor's own shape: white of roughness 1, 0.6; a floor of no
+        // colour read (the default Parquetry), white.
+        for (appearance, factor) in [
+            (
+                "PBRAppearance { baseColor 1 1 1 roughness 1 metalness 0 }",
+                0.6,
+            ),
+            ("PBRAppearance { baseColor 0.5 0.5 0.5 }", 0.6),
+            ("PBRAppearance { }", 1.0),
+            ("Parquetry { }", 1.0),
+        ] {
+            let w = import(&format!(
+                "#VRML_SIM R2023b utf8\nRectangleArena {{ floorSize 1 1 floorAppearance {appearance} }}\n"
+            ));
+            let world = w.to_world("floor").unwrap();
+            let read = world.floor().reflectance_at([0.1, 0.1]);
+            assert!((read - factor).abs() < 1e-12, "{appearance}: {read}");
+        }
+    }
+
+    #[test]
+    fn a_later_floor_of_a_colour_read_is_a_patch_on_the_first() {
+        // A maze on a Parquetry arena (its colour not read: white) with a black chequered
+        // Floor 25 cm square in its middle, where the ground sensors find the goal.
+        let w = import(
+            "#VRML_SIM R2023b utf8\n\
+             RectangleArena { floorSize 2 2 }\n\
+             Floor { translation 0.5 0 0.0001 size 0.25 0.25 \
+               appearance Parquetry { type \"chequered\" colorOverride 0 0 0 } }\n",
+        );
+        assert_eq!(w.floor_colour, None);
+        assert!(
+            !w.warnings.iter().any(|m| m.contains("left bare")),
+            "{:?}",
+            w.warnings
+        );
+        let world = w.to_world("patch").unwrap();
+        let floor = world.floor();
+        assert!((floor.reflectance_at([0.5, 0.1]) - 0.2).abs() < 1e-12);
+        assert!((floor.reflectance_at([0.5, 0.2]) - 1.0).abs() < 1e-12);
+        assert!((floor.reflectance_at([0.0, 0.0]) - 1.0).abs() < 1e-12);
     }
 
     #[test]

@@ -126,7 +126,7 @@ impl WbtImport {
             name: name.to_string(),
             basic_time_step_ms: Positive(self.basic_time_step_ms),
             floor: self.floor_colour.map(|colour| FloorSpec {
-                reflectance: Reflectance(1.0),
+                reflectance: Reflectance(self.floor_reflectance.unwrap_or(1.0)),
                 colour: Some(values::colour(colour)),
             }),
             start: self.robot.map(|[x, y, yaw]| StartSpec {

@@ -427,6 +427,18 @@ impl<'d> Importer<'d> {
         if self.y_up {
             size = [size[1], size[0]];
         }
+        self.mark_rectangle(frame, size, reflectance, colour);
+    }
+
+    /// Paints the rectangle `size` along `frame`'s x and y (scaled as the frame scales them),
+    /// centred on its origin, in a reflection factor and a colour.
+    pub(super) fn mark_rectangle(
+        &mut self,
+        frame: &Frame,
+        size: [f64; 2],
+        reflectance: f64,
+        colour: Option<[f64; 3]>,
+    ) {
         let (x, y) = (frame.axis(0), frame.axis(1));
         self.mark(PaintSpec::Rect {
             center: [Finite(snap(frame.origin[0])), Finite(snap(frame.origin[1]))],

@@ -15,13 +15,17 @@
 //! so one copy lies in the first tile and its last column (top row) stretches to the floor's
 //! edge.
 //! A grey level `g` in [0, 1] paints the reflection factor `0.2 + 0.8 g` of Webots' infra-red
-//! model (white 1, black 0.2), in steps of 1/255 of the grey scale. A texture's paint fits what
+//! model (white 1, black 0.2), in steps of 1/255 of the grey scale; of an appearance whose red
+//! (a `PBRAppearance`'s `baseColor`, times `1 - transparency`) is not 1 or whose `roughness`
+//! is not 0, `0.2 + 0.8 g red (1 - 0.5 roughness)` (a white pixel of the usual `roughness 1`
+//! reflects 0.6), that paint keeping the grey a camera sees as its colour. A texture's paint fits what
 //! the world's paint regions leave ([`MAX_PAINT_REGIONS`] with the paint before it), its image
 //! averaged down until it does.
 
 use std::collections::BTreeMap;
 use std::path::Path;
 
+use super::appearance::reflection_factor;
 use super::floor_marks::world_point;
 use super::frames::{tilt, Frame, Vec3};
 use super::import::{Importer, TILT_TOLERANCE};
@@ -30,7 +34,7 @@ use super::tree::Node;
 use super::WbtImport;
 use crate::limits::MAX_PAINT_REGIONS;
 use crate::world::spec::{paint_regions, PaintSpec};
-use crate::world::values::{Finite, Positive, Reflectance};
+use crate::world::values::{self, Finite, Positive, Reflectance};
 
 /// Largest image side read, in pixels: larger images are averaged down to it (by area) first.
 pub const MAX_TEXTURE_SIDE: usize = 2048;
@@ -72,6 +76,10 @@ pub struct FloorTexture {
     pub repeat: [bool; 2],
     /// Files to look for, in order: each url beside the world file, then in `textures/` beside it.
     pub candidates: Vec<String>,
+    /// The red the appearance gives a white pixel (its colour's red times `1 -
+    /// transparency`) and its roughness, which set the paint's reflection factor with the
+    /// pixel's level (see the module).
+    pub red_roughness: (f64, f64),
 }
 
 /// The reflection factor painted for a grey level, quantised to 1/255 of the grey scale.
@@ -255,6 +263,19 @@ impl FloorTexture {
 
     /// The paint of `image` (its equal-grey `rects`) laid in `tiles` copies along x and y.
     fn laid(&self, image: &GreyImage, rects: &[GreyRect], tiles: [usize; 2]) -> Vec<PaintSpec> {
+        let (red, roughness) = self.red_roughness;
+        let plain = (red, roughness) == (1.0, 0.0);
+        let reflectance = |level: u8| {
+            let grey = grey_reflectance(level as f64 / 255.0);
+            if plain {
+                grey
+            } else {
+                let level = (grey - BLACK_REFLECTANCE) / (1.0 - BLACK_REFLECTANCE);
+                reflection_factor(level * red, roughness, 0.0)
+            }
+        };
+        // A camera sees the pixel's grey, which the reflection factor no longer gives.
+        let colour = |level: u8| (!plain).then(|| values::colour([level as f64 / 255.0; 3]));
         let [sx, sy] = self.size;
         let [tx, ty] = self.tile;
         let (px, py) = (tx / image.width as f64, ty / image.height as f64);
@@ -294,8 +315,8 @@ impl FloorTexture {
                         ],
                         size: [Positive(x1 - x0), Positive(y1 - y0)],
                         yaw: Finite(self.yaw),
-                        reflectance: Reflectance(grey_reflectance(level as f64 / 255.0)),
-                        colour: None,
+                        reflectance: Reflectance(reflectance(level)),
+                        colour: colour(level),
                     });
                 }
             }
@@ -394,6 +415,9 @@ impl<'d> Importer<'d> {
         let field = match appearance.type_name.as_str() {
             "PBRAppearance" => "baseColorMap",
             "Appearance" => "texture",
+            // An appearance PROTO of a `colorOverride` is read as that colour (the floor's or
+            // a patch of it, `floor_look_of`): its texture is counted white.
+            _ if self.appearance_node_colour(appearance).is_some() => return None,
             _ => {
                 let label = self.label(appearance);
                 self.warn(format!(
@@ -463,6 +487,7 @@ impl<'d> Importer<'d> {
             yaw -= std::f64::consts::FRAC_PI_2;
             (sx, sy) = (sy, sx);
         }
+        let red_roughness = self.appearance_red(appearance);
         self.floor_textures.push(FloorTexture {
             urls,
             owner: label,
@@ -472,12 +497,13 @@ impl<'d> Importer<'d> {
             tile: [tile[0] * sx, tile[1] * sy],
             repeat,
             candidates: Vec::new(),
+            red_roughness,
         });
     }
 
     /// The floor of a `RectangleArena` (`frame` is its Z-up frame): its `floorAppearance`.
     pub fn arena_floor(&mut self, node: &'d Node, frame: &Frame, floor: [f64; 2]) {
-        self.floor_colour_of(node, "floorAppearance");
+        self.floor_look_of(node, "floorAppearance", frame, floor);
         let Some(&appearance) = self.nodes(node, "floorAppearance").first() else {
             return;
         };
@@ -493,15 +519,16 @@ impl<'d> Importer<'d> {
 
     /// A `Floor` PROTO: no collision in 2D, but its `appearance` may be a texture.
     pub fn floor(&mut self, node: &'d Node, frame: &Frame) {
-        self.floor_colour_of(node, "appearance");
         let local = self.local_frame(node, [0.0; 3]);
         let frame = self.z_up(&frame.then(&local));
         let size = self.vector(node, "size", [10.0, 10.0]);
         if self.y_up {
             // A Y-up Floor's size is along its own axes: its larger side covers both.
             let side = size[0].max(size[1]);
+            self.floor_look_of(node, "appearance", &frame, [side, side]);
             self.floor_surface(&frame, [side, side]);
         } else {
+            self.floor_look_of(node, "appearance", &frame, size);
             self.floor_surface(&frame, size);
         }
         let Some(&appearance) = self.nodes(node, "appearance").first() else {
@@ -651,6 +678,7 @@ mod tests {
             tile,
             repeat: [true, true],
             candidates: vec!["track.png".into()],
+            red_roughness: (1.0, 0.0),
         }
     }
 
@@ -695,6 +723,36 @@ mod tests {
             Some(grey_reflectance(0.5))
         );
         assert_eq!(reflectance_at(&paint, 0.15, 0.1), Some(1.0));
+    }
+
+    #[test]
+    fn an_appearance_s_red_and_roughness_scale_the_paint_a_camera_still_sees_grey() {
+        let image = GreyImage {
+            width: 2,
+            height: 1,
+            levels: vec![0.0, 1.0],
+        };
+        // White of roughness 1 reflects 0.6 (Webots' `0.2 + 0.8 red (1 - 0.5 roughness)`), and
+        // of a base colour 0.5 roughness 0.5, 0.5; black stays 0.2.
+        for (red_roughness, white) in [((1.0, 1.0), 0.6), ((0.5, 0.5), 0.5)] {
+            let paint = FloorTexture {
+                red_roughness,
+                ..texture([0.2, 0.1], [0.2, 0.1])
+            }
+            .paint(&image, MAX_PAINT_REGIONS)
+            .unwrap();
+            let close = |a: Option<f64>, b: f64| a.is_some_and(|a| (a - b).abs() < 1e-12);
+            assert!(close(reflectance_at(&paint, -0.05, 0.0), 0.2));
+            assert!(close(reflectance_at(&paint, 0.05, 0.0), white));
+            let colours: Vec<_> = paint
+                .iter()
+                .map(|p| match p {
+                    PaintSpec::Rect { colour, .. } => colour.map(|c| c.map(|l| l.0)),
+                    _ => None,
+                })
+                .collect();
+            assert_eq!(colours, [Some([0.0; 3]), Some([1.0; 3])]);
+        }
     }
 
     #[test]

@@ -2,6 +2,8 @@
 //! `WorldInfo`, the robot's start pose and the budget that keeps a hostile file bounded.
 //! Collision shapes are in `shapes.rs`, PROTO expansions in `protos.rs`.
 
+use std::collections::HashSet;
+
 use super::appearance::WallTexture;
 use super::appearance::{BodyLook, Look};
 use super::devices::ExtensionDevice;
@@ -155,6 +157,10 @@ pub struct Importer<'d> {
     pub sensing: bool,
     /// The floor's colour (see `appearance.rs`).
     pub floor_colour: Option<[f64; 3]>,
+    /// The reflection factor of the floor whose colour is `floor_colour`.
+    pub floor_reflectance: Option<f64>,
+    /// Whether the world's first floor was met (a later one is a floor mark).
+    pub floor_seen: bool,
     /// Per obstacle, the lines of the nodes that hold it (see [`WbtImport::obstacle_owners`]).
     pub obstacle_owners: Vec<Vec<usize>>,
     /// Movable bodies: objects with physics light and small enough to push (see `movable`).
@@ -197,11 +203,17 @@ pub struct Importer<'d> {
     /// simulated through it).
     pub bounded: bool,
     pub warnings: Vec<String>,
+    /// The warnings given so far: one given again (the same words of the same node, as a
+    /// `CircleArena` stand-in's many wall segments would each give) is not repeated.
+    warned: HashSet<String>,
     /// Those of `warnings` that a run of the whole world does not share.
     pub one_controller_warnings: Vec<String>,
     /// Set while reading the collision shapes of an object with physics: it falls onto the
     /// floor in Webots, so its height does not let the robot pass under it.
     pub falls: bool,
+    /// How many collision shapes so far were low enough for the robot to drive on (imported
+    /// as floor): a Solid whose collision shapes all were is a mark on the floor.
+    pub stood_on: usize,
     /// The vertical extent (m) of the last collision shape kept as an obstacle: a movable
     /// body's height as it rests on the floor.
     pub shape_height: f64,
@@ -255,6 +267,8 @@ fn walk<'d>(
         sensing: false,
         shape_height: 0.0,
         floor_colour: None,
+        floor_reflectance: None,
+        floor_seen: false,
         obstacle_owners: Vec::new(),
         bodies: Vec::new(),
         body_owners: Vec::new(),
@@ -274,8 +288,10 @@ fn walk<'d>(
         floor_meshes: Vec::new(),
         bounded: false,
         warnings: doc.warnings.clone(),
+        warned: HashSet::new(),
         one_controller_warnings: Vec::new(),
         falls: false,
+        stood_on: 0,
         visits: 0,
         too_deep: false,
         chosen: None,
@@ -334,6 +350,7 @@ fn finish((mut importer, basic_time_step_ms): (Importer<'_>, f64)) -> WbtImport 
         sensed_looks: importer.sensed_looks,
         sensed_owners: importer.sensed_owners,
         floor_colour: importer.floor_colour,
+        floor_reflectance: importer.floor_reflectance,
         obstacle_owners: importer.obstacle_owners,
         bodies: importer.bodies,
         body_owners: importer.body_owners,
@@ -372,14 +389,18 @@ impl<'d> Importer<'d> {
     }
 
     pub fn warn(&mut self, message: String) {
-        self.warnings.push(message);
+        if self.warned.insert(message.clone()) {
+            self.warnings.push(message);
+        }
     }
 
     /// A warning of a run of one controller only: a run of the whole world simulates what it
     /// says is left out.
     fn warn_one_controller(&mut self, message: String) {
-        self.one_controller_warnings.push(message.clone());
-        self.warn(message);
+        if !self.warned.contains(&message) {
+            self.one_controller_warnings.push(message.clone());
+            self.warn(message);
+        }
     }
 
     /// Counts a visit; false once the budget or the depth limit is exhausted.
@@ -622,6 +643,8 @@ impl<'d> Importer<'d> {
         let frame = frame.then(&local);
         let falls = self.is_dynamic(node);
         let first = self.obstacles.len();
+        let (first_sensed, first_body) = (self.sensed_obstacles.len(), self.bodies.len());
+        let stood_on = self.stood_on;
         let look = self.solid_look(node);
         let outer_look = std::mem::replace(&mut self.look, look);
         for &shape in self.nodes(node, "boundingObject") {
@@ -638,8 +661,17 @@ impl<'d> Importer<'d> {
                 self.warn_static(node);
             }
         }
+        // A Solid whose collision shapes are all floor the robot drives on (a pad or a tile a
+        // few millimetres thick) shows its visible shapes to the ground sensors and the camera
+        // as floor marks, as a Solid of no bounding object does.
+        let floor_only = self.stood_on > stood_on
+            && (
+                self.obstacles.len(),
+                self.sensed_obstacles.len(),
+                self.bodies.len(),
+            ) == (first, first_sensed, first_body);
         let outer = self.bounded;
-        self.bounded = !self.nodes(node, "boundingObject").is_empty();
+        self.bounded = !self.nodes(node, "boundingObject").is_empty() && !floor_only;
         self.scene_children(node, &frame, depth);
         self.bounded = outer;
     }

@@ -164,6 +164,9 @@ pub struct WbtImport {
     pub sensed_owners: Vec<Vec<usize>>,
     /// The colour of the floor, when the world gives one (see `appearance.rs`).
     pub floor_colour: Option<[f64; 3]>,
+    /// The infra-red reflection factor of that floor (its appearance's red and roughness, as
+    /// a wall's); the floor of no colour read reflects as white.
+    pub floor_reflectance: Option<f64>,
     /// Per obstacle, the lines of the nodes that hold it, outermost first (the file's node
     /// that places it, the Solid whose collision shape it is, and those between): moving one
     /// of those nodes moves it.

@@ -159,7 +159,10 @@ impl<'d> Importer<'d> {
             ));
         }
         let first = self.obstacles.len();
+        // With a mass it has physics: placed in the air, it falls onto the floor.
+        self.falls = mass > 0.0;
         self.box_at(node, &frame, [0.0; 3], clamped);
+        self.falls = false;
         if mass > 0.0 && !self.make_movable(first, Some(mass), false) {
             self.warn_static(node);
         }
@@ -172,13 +175,16 @@ impl<'d> Importer<'d> {
         {
             return;
         }
-        if self.is_dynamic(node) {
+        let falls = self.is_dynamic(node);
+        if falls {
             self.warn_static(node);
         }
         let frame = self.proto_frame(node, frame, [0.0, 0.0, 1.0]);
         let size = self.proto_size(node, [2.0; 3]);
         let size = self.positive_or_default(node, size, [2.0; 3]);
+        self.falls = falls;
         self.box_at(node, &frame, [0.0; 3], size);
+        self.falls = false;
     }
 
     /// A PROTO of one fixed box centred on its translation; `y_up_size` is its size as the Y-up

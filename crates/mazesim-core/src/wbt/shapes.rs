@@ -150,6 +150,7 @@ impl<'d> Importer<'d> {
             return false;
         }
         if top <= STOOD_ON && !self.falls {
+            self.stood_on += 1;
             self.warn(format!(
                 "{owner}: a collision shape {:.1} mm high: the robot stands and drives on it, imported as floor (Webots' ODE may stop an e-puck driving onto it at its edge)",
                 top * 1000.0

@@ -1181,3 +1181,81 @@ fn a_robot_standing_upside_down_is_said_so() {
     let old = import("#VRML_SIM V8.5 utf8\nE-puck { rotation 1 0 0 3.14159 }\n");
     assert!(warned(&old, "upside down"), "{:?}", old.warnings);
 }
+
+#[test]
+fn a_warning_a_node_gives_again_in_the_same_words_is_given_once() {
+    // Three thin boxes of one Solid (as the many segments of a flat CircleArena): each would
+    // say the same of the same node.
+    let thin = |x: f64| {
+        format!("Pose {{ translation {x} 0 0.002 children [ Box {{ size 0.1 0.1 0.001 }} ] }}")
+    };
+    let w = import(&format!(
+        "#VRML_SIM R2023b utf8\nSolid {{ name \"flat\" boundingObject Group {{ children [ {} {} {} ] }} }}\n",
+        thin(0.0),
+        thin(0.3),
+        thin(0.6)
+    ));
+    let floor = w
+        .warnings
+        .iter()
+        .filter(|m| m.contains("imported as floor"));
+    assert_eq!(floor.count(), 1, "{:?}", w.warnings);
+}
+
+#[test]
+fn a_box_proto_with_a_mass_placed_in_the_air_falls_onto_the_floor() {
+    // Webots' tutorials place boxes with physics in the air: they fall and stand on the
+    // floor. Without a mass a WoodenBox stays where it is, over the robot.
+    let w = import(
+        "#VRML_SIM R2023b utf8\n\
+         WoodenBox { translation 0 0.4 0.175 size 0.1 0.1 0.1 mass 0.05 }\n\
+         SolidBox { translation 0.5 0 0.3 size 0.1 0.1 0.1 physics Physics { } }\n\
+         WoodenBox { translation 0 -0.4 0.3 size 0.1 0.1 0.1 }\n",
+    );
+    assert!(
+        !warned(&w, "line 2: WoodenBox: a collision shape"),
+        "{:?}",
+        w.warnings
+    );
+    assert!(
+        !warned(&w, "line 3: SolidBox: a collision shape"),
+        "{:?}",
+        w.warnings
+    );
+    assert!(warned(
+        &w,
+        "line 4: WoodenBox: a collision shape 0.250 m above the floor passes over the robot"
+    ));
+    assert_eq!(w.bodies.len(), 1, "the light box is a movable body");
+    assert_eq!(
+        w.obstacles.len(),
+        1,
+        "the SolidBox stands on the floor, static"
+    );
+}
+
+#[test]
+fn a_pad_of_a_solid_the_robot_drives_on_is_a_floor_mark_of_its_colour() {
+    // A black goal pad 2 mm thick with a bounding object: the robot drives on it (floor) and
+    // its ground sensors see it black, as a pad of no bounding object. A Solid whose bounding
+    // object also holds a post keeps its shapes to itself.
+    let pad = |x: f64, post: &str| {
+        format!(
+            "Solid {{ translation {x} 0 0.001 children [ DEF P Shape {{ \
+               appearance PBRAppearance {{ baseColor 0 0 0 }} geometry Box {{ size 0.1 0.1 0.002 }} }} ] \
+               boundingObject Group {{ children [ USE P {post} ] }} }}\n"
+        )
+    };
+    let post = "Pose { translation 0 0 0.05 children [ Box { size 0.01 0.01 0.1 } ] }";
+    let w = import(&format!(
+        "#VRML_SIM R2023b utf8\n{}{}",
+        pad(0.3, ""),
+        pad(-0.3, post)
+    ));
+    assert!(warned(&w, "line 2: Solid: a collision shape 2.0 mm high"));
+    let world = w.to_world("pad").unwrap();
+    let floor = world.floor();
+    assert!(close(floor.reflectance_at([0.3, 0.02]), 0.2));
+    assert!(close(floor.reflectance_at([-0.3, 0.02]), 1.0));
+    assert_eq!(w.obstacles.len(), 1, "the post");
+}
