@@ -172,6 +172,37 @@ def test_floor_band_and_threshold_are_checked() -> None:
         Alg7Decoder(["10110"])
 
 
+@pytest.mark.parametrize("number", [math.nan, math.inf, -math.inf])
+@pytest.mark.parametrize("name", ["bit_threshold", "floor_low", "floor_high", "floor_distance"])
+def test_a_decoder_s_numbers_must_be_finite(name: str, number: float) -> None:
+    # NaN fails every comparison, so a band check alone let it through.
+    with pytest.raises(InvalidArgumentError, match=f"expected {name} a finite number"):
+        Alg7Decoder(DEFAULT_BOOK, **{name: number})
+
+
+@pytest.mark.parametrize(
+    ("keyword", "number"),
+    [
+        ("resolution", math.nan),
+        ("resolution", math.inf),
+        ("resolution", -1.0),
+        ("control_step_ms", math.inf),
+    ],
+)
+def test_wheel_encoders_refuse_a_resolution_or_step_that_is_not_finite(
+    keyword: str, number: float
+) -> None:
+    robot = mazesim.RobotProfile.builtin("e-puck")
+    arguments = {"control_step_ms": 64.0, keyword: number}
+    with pytest.raises(InvalidArgumentError, match="finite"):
+        WheelEncoders(robot, 1, **arguments)
+
+
+def test_a_barcode_reader_refuses_what_is_no_decoder() -> None:
+    with pytest.raises(InvalidArgumentError, match="expected a Decoder, found an int"):
+        BarcodeReader(5, mazesim.RobotProfile.builtin("e-puck"))  # type: ignore[arg-type]
+
+
 def test_robust_decoder_needs_positions() -> None:
     with pytest.raises(InvalidArgumentError, match="position"):
         RobustDecoder(DEFAULT_BOOK).update(WHITE)

@@ -189,3 +189,12 @@ def test_what_stretches_cannot_run_is_refused() -> None:
         run_navigator_episodes(robust, greedy, 1)
     with pytest.raises(InvalidArgumentError, match="at least 1 step"):
         run_navigator_episodes(truth, greedy, 1, stretch_steps=0)
+
+
+@pytest.mark.parametrize(("worlds", "episodes"), [(1, -1), (1, 0), (0, 3)])
+def test_an_evaluation_of_no_episode_is_refused(worlds: int, episodes: int) -> None:
+    # It returned a summary of 0 episodes, 0 % success, as if the navigator had been tried.
+    policy = load_policy(None)
+    maze = [mazesim.load_world("seed-maze")] * worlds
+    with pytest.raises(mazesim.InvalidArgumentError, match="at least one world and one episode"):
+        evaluate_navigator(policy, maze, episodes)

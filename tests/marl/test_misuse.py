@@ -90,6 +90,18 @@ def test_the_aec_env_asks_for_reset_with_the_package_error() -> None:
     assert env.agent_selection == "epuck_1"
 
 
+@pytest.mark.parametrize("agent", ["zz", ["epuck_0"], 0])
+def test_the_aec_env_observes_only_its_agents(agent: Any) -> None:
+    # PettingZoo's conversion looks the agent up in a dict: a bare KeyError (TypeError for a
+    # list); the parallel env's spaces already named the agents.
+    for task in (maze_goals_v0, aggregation_v0):
+        env = task.env(**OPTIONS) if task is maze_goals_v0 else task.env()
+        env.reset(seed=0)
+        with pytest.raises(mazesim.UnknownNameError, match="expected one of the agents"):
+            env.observe(agent)
+        assert env.observe("epuck_0") is not None
+
+
 @pytest.mark.parametrize("action", ["fast", [1.0, "x"], {"left": 1.0}, object()])
 def test_an_action_that_is_not_two_numbers_names_the_agent(action: Any) -> None:
     """numpy's "could not convert string to float: 'fast'" came out as an InvalidArgumentError

@@ -125,3 +125,20 @@ def test_no_usable_network_interface_is_a_clear_error() -> None:
     last = result.stderr.strip().splitlines()[-1]
     assert result.returncode != 0 and last.startswith("mazesim: error: Cyclone DDS could not"), last
     assert "'lo' up" in last and "internal error" not in result.stderr
+
+
+@needs_ros2
+def test_a_topic_dds_refuses_is_the_package_s_error() -> None:
+    """A DDS topic, reader or writer that Cyclone refuses (``DDS_RETCODE_BAD_PARAMETER`` under a
+    tight memory limit) came out of ``mazesim ros2 bridge`` as an internal error."""
+    from cyclonedds.core import DDSException
+
+    from mazesim.errors import MazesimIOError
+    from mazesim.ros2 import node as ros2_node
+
+    def refused(*_: object) -> None:
+        raise DDSException(1, "a bad parameter")
+
+    with pytest.raises(MazesimIOError, match="could not make a writer of rt/ps0"):
+        ros2_node._joined(refused, "a writer of rt/ps0")
+    assert ros2_node._joined(lambda: 7, "anything") == 7

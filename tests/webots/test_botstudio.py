@@ -230,3 +230,21 @@ def test_a_mutated_file_is_read_or_refused_with_the_package_s_error() -> None:
         except InvalidArgumentError:
             outcomes["refused"] += 1
     assert min(outcomes.values()) > 50, outcomes
+
+
+def test_a_file_it_cannot_read_ends_the_controller_with_one_line_saying_why(
+    tmp_path: Path, capfd: pytest.CaptureFixture[str]
+) -> None:
+    path = write_automaton(tmp_path, "bad", HEADER + "S;1;2\n")
+    run = run_controller(path, mazesim.load_world("arena"), seconds=0.5, noise=False)
+    err = capfd.readouterr().err
+    assert run.exit_status == 1
+    assert "BotStudio: " in err and "expected a state of 18 fields, found 3" in err
+    assert "Traceback" not in err
+
+
+def test_a_number_of_thousands_of_digits_reads_as_qt_reads_one_out_of_range() -> None:
+    # Qt's toInt gives 0 beyond an int's range; Python's int() refuses over 4300 digits.
+    text = HEADER + f"S;0;go;0;0;1;{KEEP}{'9' * 5000};50;\n"
+    automaton = read_automaton(text, "big.bsg")
+    assert automaton.states[0].speeds == (0, 50)

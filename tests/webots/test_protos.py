@@ -220,12 +220,18 @@ def test_cr_line_ends_import_like_lf() -> None:
     assert len(cr["obstacles"]) == 9
 
 
+def _project_proto(project: Path, name: str, text: str) -> None:
+    """Writes the PROTO ``name`` in the project's ``protos/`` folder."""
+    (project / "protos").mkdir(exist_ok=True)
+    (project / "protos" / f"{name}.proto").write_text(text)
+
+
 def test_template_error_names_the_proto(tmp_path: Path) -> None:
-    protos = tmp_path / "protos"
-    protos.mkdir()
-    (protos / "Broken.proto").write_text(
+    _project_proto(
+        tmp_path,
+        "Broken",
         "#VRML_SIM R2023b utf8\nPROTO Broken [ ]\n"
-        "{\n  %< undefinedName.call(); >%\n  Group { }\n}\n"
+        "{\n  %< undefinedName.call(); >%\n  Group { }\n}\n",
     )
     from mazesim.errors import WorldFormatError
 
@@ -736,3 +742,86 @@ def test_an_is_naming_a_field_the_proto_does_not_declare_is_left_unlinked(
     assert post["size"] == [0.1, 0.1]
     (said,) = [w for w in report["warnings"] if "IS label" in w]
     assert "Post has no field `label`; left unlinked, as in Webots" in said
+
+
+def _fan(tmp_path: Path) -> None:
+    """A procedural PROTO that holds two of itself, one level deeper each, down to depth 10."""
+    _project_proto(
+        tmp_path,
+        "Fan",
+        "#VRML_SIM R2023b utf8\n# template language: javascript\n"
+        "PROTO Fan [ field SFInt32 depth 0 field SFInt32 side 0 ]\n{\n"
+        "  %< const d = fields.depth.value; >%\n  Group { children [\n"
+        "  %< if (d < 10) { >% Fan { depth %<= d + 1 >% side 0 } Fan { depth %<= d + 1 >%"
+        " side %<= fields.side.value >% } %< } >%\n  ] }\n}\n",
+    )
+
+
+def test_instances_of_the_same_fields_share_one_template_run(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    # 2,047 instances, 11 distinct field values (the depth): 11 template runs, each a process
+    # of its own, not 2,047.
+    from mazesim.webots.proto import expander, templates
+
+    _fan(tmp_path)
+    runs: list[str] = []
+    evaluate = templates.evaluate_template
+
+    def counted(*args: Any) -> str:
+        runs.append(args[4])
+        return evaluate(*args)
+
+    monkeypatch.setattr(expander, "evaluate_template", counted)
+    world = str(tmp_path / "worlds" / "w.wbt")
+    _, report = import_wbt_text("#VRML_SIM R2023b utf8\nFan { }\n", world)
+    assert len(runs) == 11
+    assert not [w for w in report["warnings"] if "templates" in w]
+
+
+def test_a_world_running_more_templates_than_the_limit_says_so(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    from mazesim.webots.proto import expander
+
+    _fan(tmp_path)
+    monkeypatch.setattr(expander, "MAX_TEMPLATE_RUNS", 5)
+    world = str(tmp_path / "worlds" / "w.wbt")
+    _, report = import_wbt_text("#VRML_SIM R2023b utf8\nFan { side 1 }\n", world)
+    said = [w for w in report["warnings"] if "more than 5 PROTO templates" in w]
+    assert said == [
+        "the world runs more than 5 PROTO templates (instances whose fields differ); the rest"
+        " are not expanded"
+    ]
+
+
+@pytest.mark.parametrize("value", ["nan", "inf", "-1e400"])
+def test_an_int32_field_that_is_no_whole_number_is_a_world_format_error(
+    tmp_path: Path, value: str
+) -> None:
+    from mazesim.errors import WorldFormatError
+
+    _fan(tmp_path)
+    with pytest.raises(WorldFormatError, match="an SFInt32 field: expected a whole number"):
+        import_wbt_text(
+            f"#VRML_SIM R2023b utf8\nFan {{ depth {value} }}\n", str(tmp_path / "worlds" / "w.wbt")
+        )
+
+
+def test_a_texture_image_larger_than_mazesim_reads_is_a_warning(tmp_path: Path) -> None:
+    # A 1-bit PNG of 8200 x 8200 pixels is a few kilobytes; read as grey levels it would take
+    # half a gigabyte.
+    from PIL import Image
+
+    from mazesim.webots.importer import MAX_TEXTURE_PIXELS
+
+    assert 8200 * 8200 > MAX_TEXTURE_PIXELS
+    Image.new("1", (8200, 8200)).save(tmp_path / "huge.png")
+    world = (
+        "#VRML_SIM R2023b utf8\nRectangleArena { floorSize 1 1 floorAppearance PBRAppearance {"
+        ' baseColorMap ImageTexture { url ["huge.png"] } } }\n'
+    )
+    _, report = import_wbt_text(world, str(tmp_path / "w.wbt"))
+    said = [w for w in report["warnings"] if "huge.png" in w]
+    assert len(said) == 1 and "8200 x 8200 pixels, more than the" in said[0], said
+    assert report["floor_paint"] == 0

@@ -38,6 +38,12 @@ ENDLESS = {
     "lua recursion": ("lua", "%{ local function f() return f() end f() }%"),
     "lua grows a table": ("lua", "%{ local t = {} for i = 1, 1e10 do t[i] = i end }%"),
     "lua grows a string": ("lua", "%{ local s = 'x' while true do s = s .. s end }%"),
+    # A pattern match runs in C, where the clock hook never looks: the processor limit of the
+    # process the template runs in ends it.
+    "lua pattern backtracking": (
+        "lua",
+        "%{ local found = string.rep('a', 3000):find('.-.-.-.-x') }%",
+    ),
     "javascript while": ("javascript", "%< while (true) {} >%"),
     "javascript grows a string": ("javascript", "%< let s = 'x'; while (true) { s = s + s; } >%"),
     # QuickJS does not look at its time limit inside a regular expression: this one backtracks
@@ -158,3 +164,61 @@ def test_a_lua_template_drawing_its_texture_with_lua_gd_runs(tmp_path: Path) -> 
     out = templates.evaluate_template("lua", body, fields, {}, "Victim.proto")
     assert out == "128x64 false"
     assert not target.exists()
+
+
+def test_a_lua_template_loads_no_bytecode_and_requires_no_file(tmp_path: Path) -> None:
+    # Lua does not check bytecode (a forged chunk crashes it) and its file searcher opens any
+    # path (/dev/stdin blocks): text chunks load, bytecode does not, and require finds only
+    # the modules mazesim provides.
+    (tmp_path / "mod.lua").write_text("return 42\n", encoding="utf-8")
+    body = (
+        "%{= tostring(string.dump) }%|%{= load('return 6 * 7')() }%"
+        "|%{= tostring(load('\\27Lua')) }%"
+        "%{ package.path = fields.dir.value .. '/?.lua' }%"
+        "|%{= tostring((pcall(require, 'mod'))) }%|%{= require('wbgeometry') and 'ok' }%"
+    )
+    fields = {"dir": {"value": str(tmp_path), "defaultValue": ""}}
+    assert templates.evaluate_template("lua", body, fields, {}, "Forge.proto") == (
+        "nil|42|nil|false|ok"
+    )
+
+
+def test_a_forged_bytecode_chunk_is_a_world_format_error_not_a_crash() -> None:
+    body = (
+        "%{ local d = string.dump(function(a, b) return a + b end) "
+        "local g = load(d:sub(1, 48) .. '\\0' .. d:sub(50), 'x', 'b') if g then g(1, 2) end }%"
+    )
+    with pytest.raises(WorldFormatError, match="Crash.proto"):
+        templates.evaluate_template("lua", body, {}, {}, "Crash.proto")
+
+
+def test_an_engine_that_crashes_or_waits_is_reported_not_followed() -> None:
+    import signal
+    import time
+
+    crashed = templates._isolated(lambda: os.kill(os.getpid(), signal.SIGSEGV) or {}, 1.0)
+    assert crashed == {"crashed": "SIGSEGV"}
+    started = time.monotonic()
+    waited = templates._isolated(lambda: time.sleep(600) or {}, 1.0, wall_seconds=0.5)
+    assert waited == {"over_budget": True}
+    assert time.monotonic() - started < 30.0
+
+
+@pytest.mark.parametrize(
+    ("language", "body"),
+    [
+        ("javascript", "%<= 'Group { } '.repeat(2000) >%"),
+        ("lua", "%{= string.rep('Group { } ', 2000) }%"),
+    ],
+)
+def test_a_template_that_makes_too_much_text_is_refused(
+    language: str, body: str, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.setattr(templates, "MAX_TEMPLATE_TEXT", 10_000)
+    with pytest.raises(WorldFormatError, match="more than the 10000 a template may make"):
+        templates.evaluate_template(language, body, {}, {}, "Repeat.proto")
+
+
+def test_a_lua_template_s_text_that_is_not_utf_8_is_said_so() -> None:
+    with pytest.raises(WorldFormatError, match="not UTF-8"):
+        templates.evaluate_template("lua", "%{= '\\255' }%", {}, {}, "Bytes.proto")

@@ -137,6 +137,19 @@ class Decoder(ABC):
     ) -> None:
         if not isinstance(book, CodeBook):
             raise WrongTypeError(f"expected a CodeBook, found {_a_type(book)}")
+        numbers = {
+            "floor_low": floor_low,
+            "floor_high": floor_high,
+            "bit_threshold": bit_threshold,
+            "floor_distance": floor_distance,
+        }
+        for name, number in numbers.items():
+            if not math.isfinite(number):
+                raise InvalidArgumentError(f"expected {name} a finite number, found {number}")
+        if floor_distance < 0.0:
+            raise InvalidArgumentError(
+                f"expected floor_distance of 0 or more metres, found {floor_distance}"
+            )
         if not floor_low < floor_high:
             raise InvalidArgumentError(
                 f"expected floor_low < floor_high, found {floor_low} and {floor_high}"

@@ -79,9 +79,13 @@ class WheelEncoders:
     ) -> None:
         if num_envs < 1:
             raise InvalidArgumentError(f"expected at least one robot, found {num_envs}")
-        if not control_step_ms > 0.0:
+        if not 0.0 < control_step_ms < math.inf:
             raise InvalidArgumentError(
-                f"expected a positive control step in ms, found {control_step_ms}"
+                f"expected a positive, finite control step in ms, found {control_step_ms}"
+            )
+        if not 0.0 <= resolution < math.inf:
+            raise InvalidArgumentError(
+                f"expected a resolution in radians of 0 or more, finite, found {resolution}"
             )
         self.max_wheel_speed = float(robot.max_wheel_speed)
         self.num_envs = int(num_envs)

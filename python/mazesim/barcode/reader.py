@@ -15,7 +15,7 @@ import numpy.typing as npt
 from mazesim._core import RobotProfile, Simulator
 from mazesim.barcode.decoders import Decoder, Reading
 from mazesim.barcode.odometry import Odometry, _as_mask, barcode_sensor_index
-from mazesim.errors import InvalidArgumentError
+from mazesim.errors import InvalidArgumentError, WrongTypeError, _a_type
 
 __all__ = ["BarcodeReader", "BatchBarcodeReader"]
 
@@ -37,6 +37,8 @@ class BarcodeReader:
     """
 
     def __init__(self, decoder: Decoder, robot: RobotProfile) -> None:
+        if not isinstance(decoder, Decoder):
+            raise WrongTypeError(f"expected a Decoder, found {_a_type(decoder)}")
         self.decoder = decoder
         self.sensor_index = barcode_sensor_index(robot)
         self.odometry = Odometry(robot, 1, self.sensor_index)

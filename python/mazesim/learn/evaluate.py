@@ -432,7 +432,13 @@ def evaluate_navigator(
     Raises:
         PolicyFormatError: A flat navigator asked to drive a world it did not learn.
         MissingDependencyError: ``spread`` needs a package that is not installed.
+        InvalidArgumentError: ``episodes_per_world`` is below 1, or ``worlds`` is empty.
     """
+    if episodes_per_world < 1 or len(worlds) < 1:
+        raise InvalidArgumentError(
+            "expected at least one world and one episode per world, found"
+            f" {len(worlds)} worlds and {episodes_per_world} episodes per world"
+        )
     if spread is not None and not isinstance(robot, (str, RobotProfile)):
         raise InvalidArgumentError(
             "expected one robot profile (a name, a profile file or a RobotProfile) for every "

@@ -13,7 +13,7 @@ from pettingzoo.utils.conversions import parallel_to_aec_wrapper
 from pettingzoo.utils.wrappers import OrderEnforcingWrapper
 
 from mazesim.envs.errors import ResetNeededError
-from mazesim.errors import InvalidArgumentError, _closest_name, _shown
+from mazesim.errors import InvalidArgumentError, UnknownNameError, _closest_name, _shown
 from mazesim.marl.batch import MultiRobotBatch
 from mazesim.marl.parallel import MultiRobotParallelEnv
 from mazesim.marl.tasks import MultiRobotTask
@@ -122,6 +122,12 @@ class _OrderEnforcing(OrderEnforcingWrapper[Any, Any, Any]):
 
     def observe(self, agent: Any) -> Any:
         self._reset_first("observe")
+        if not (isinstance(agent, str) and agent in self.possible_agents):
+            raise UnknownNameError(
+                f"expected one of the agents {self.possible_agents}, found {_shown(agent)}",
+                available=list(self.possible_agents),
+                name=agent if isinstance(agent, str) else None,
+            )
         return super().observe(agent)
 
     def state(self) -> Any:

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import time
 import uuid
+from collections.abc import Callable
 from typing import Any
 
 from mazesim.errors import MazesimIOError
@@ -25,6 +26,24 @@ __all__ = ["Node", "Reader", "Writer", "dds_topic_name"]
 def dds_topic_name(topic: str) -> str:
     """The DDS topic of a ROS 2 topic: ``/ps0`` -> ``rt/ps0``."""
     return "rt/" + topic.lstrip("/")
+
+
+def _joined(make: Callable[[], Any], what: str) -> Any:
+    """What ``make`` makes in Cyclone DDS (a topic, a reader, a writer), or the package's error
+    saying what DDS refused (a ``DDSException`` came out as an internal error).
+
+    Raises:
+        MazesimIOError: DDS refused it (out of memory, a bad parameter).
+    """
+    from cyclonedds.core import DDSException
+
+    try:
+        return make()
+    except DDSException as e:
+        raise MazesimIOError(
+            f"Cyclone DDS could not make {what} ({e}): expected the memory and the network a "
+            "DDS participant needs; check the process's memory limit and `ip link`"
+        ) from None
 
 
 class Writer:
@@ -164,8 +183,11 @@ class Node:
         # TwistStamped), and DDS matches each reader only with writers of its own type.
         key = (dds_name, msgtype)
         if key not in self._topics:
-            self._topics[key] = self._topic_class(
-                self.participant, dds_name, idl or messages.idl_type(self.distro, msgtype)
+            self._topics[key] = _joined(
+                lambda: self._topic_class(
+                    self.participant, dds_name, idl or messages.idl_type(self.distro, msgtype)
+                ),
+                f"the topic {dds_name} of {msgtype}",
             )
         return self._topics[key]
 
@@ -174,8 +196,10 @@ class Node:
 
         name = dds_topic_name(topic) if ros_topic else topic
         user_data = graph.endpoint_user_data(self.distro, msgtype) if ros_topic else None
-        return DataWriter(
-            self.participant, self._topic(name, msgtype), qos=cyclone_qos(qos, user_data)
+        dds_topic = self._topic(name, msgtype)
+        return _joined(
+            lambda: DataWriter(self.participant, dds_topic, qos=cyclone_qos(qos, user_data)),
+            f"a writer of {name}",
         )
 
     def resolve(self, topic: str) -> str:
@@ -197,10 +221,10 @@ class Node:
 
         topic = self.resolve(topic)
         user_data = graph.endpoint_user_data(self.distro, msgtype)
-        dds = DataReader(
-            self.participant,
-            self._topic(dds_topic_name(topic), msgtype),
-            qos=cyclone_qos(qos, user_data),
+        dds_topic = self._topic(dds_topic_name(topic), msgtype)
+        dds = _joined(
+            lambda: DataReader(self.participant, dds_topic, qos=cyclone_qos(qos, user_data)),
+            f"a reader of {topic}",
         )
         reader = Reader(topic, msgtype, dds, qos)
         self.readers.append(reader)

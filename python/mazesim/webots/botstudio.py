@@ -36,11 +36,12 @@ from __future__ import annotations
 
 import math
 import re
+import sys
 from dataclasses import dataclass, field
 from typing import Any
 
 from mazesim._paths import MAX_TEXT_CHARACTERS, read_input
-from mazesim.errors import InvalidArgumentError, _shown
+from mazesim.errors import InvalidArgumentError, MazesimError, _shown
 from mazesim.webots.node_types import node_type
 
 __all__ = ["Automaton", "State", "Transition", "read_automaton", "run_automaton"]
@@ -147,7 +148,9 @@ class Automaton:
 def _whole(token: str) -> int:
     """A token as Qt's ``toInt`` reads it: the whole number it writes, else 0."""
     text = token.strip()
-    if not _WHOLE.fullmatch(text):
+    # Beyond 10 digits it is outside Qt's int whatever they are (and Python's int() refuses
+    # more than 4300).
+    if not _WHOLE.fullmatch(text) or len(text.lstrip("+-").lstrip("0")) > 10:
         return 0
     value = int(text)
     return value if _INT_RANGE[0] <= value <= _INT_RANGE[1] else 0
@@ -388,15 +391,18 @@ def run_automaton(path: str) -> None:
     """Runs the BotStudio file ``path`` on the run's robot until the run ends (the controller of
     a world's robot whose controller is ``NAME.bsg``).
 
-    Raises:
-        InvalidArgumentError: The file is not a BotStudio automaton BotStudio reads (see
-            :func:`read_automaton`).
-        MazesimIOError: The file cannot be read.
+    A file that cannot be read, or that is not an automaton BotStudio reads (see
+    :func:`read_automaton`), ends the controller with exit status 1 and one line on stderr
+    saying why (``BotStudio: ...``), not a traceback of mazesim's.
     """
     from mazesim.webots.controller import Robot
 
-    data = read_input(path, MAX_TEXT_CHARACTERS, "the BotStudio automaton")
-    automaton = read_automaton(data.decode("utf-8", errors="replace"), path)
+    try:
+        data = read_input(path, MAX_TEXT_CHARACTERS, "the BotStudio automaton")
+        automaton = read_automaton(data.decode("utf-8", errors="replace"), path)
+    except MazesimError as error:
+        print(f"BotStudio: {error}", file=sys.stderr)
+        raise SystemExit(1) from None
     robot = _Robot(Robot())
     current = automaton.initial()
     if current is None:

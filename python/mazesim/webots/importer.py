@@ -15,7 +15,9 @@ from __future__ import annotations
 import errno
 import os
 import re
-from collections.abc import Callable, Mapping
+import warnings
+from collections.abc import Callable, Iterator, Mapping
+from contextlib import contextmanager
 from typing import TYPE_CHECKING, Any, Literal, TypedDict, TypeVar, Union, cast
 
 import numpy as np
@@ -219,6 +221,36 @@ class ProtoReport(TypedDict):
     downloads: list[str]
 
 
+#: Most pixels of a texture image read (8192 x 8192): a larger one is named in a warning and
+#: left out, as one that cannot be decoded (a small file may declare a huge image).
+MAX_TEXTURE_PIXELS = 8192 * 8192
+
+
+@contextmanager
+def _texture_image(path: str, what: str) -> Iterator[Any]:
+    """The image of a texture file, opened, at most :data:`MAX_TEXTURE_PIXELS` pixels.
+
+    Raises:
+        OSError: The file cannot be read or decoded, or its image is larger.
+    """
+    from PIL import Image
+
+    with open_input(path, what) as raw, warnings.catch_warnings():
+        warnings.simplefilter("ignore", Image.DecompressionBombWarning)
+        try:
+            image = Image.open(raw)
+        except Image.DecompressionBombError as error:
+            raise OSError(f"too large an image: {error}") from None
+        with image:
+            width, height = image.size
+            if width * height > MAX_TEXTURE_PIXELS:
+                raise OSError(
+                    f"an image of {width} x {height} pixels, more than the"
+                    f" {MAX_TEXTURE_PIXELS} mazesim reads"
+                )
+            yield image
+
+
 def grey_levels(path: str) -> npt.NDArray[np.float64]:
     """Reads an image file (PNG, JPEG, ...) as grey levels in [0, 1].
 
@@ -229,11 +261,10 @@ def grey_levels(path: str) -> npt.NDArray[np.float64]:
         A C-contiguous ``(height, width)`` float64 array, the top row first.
 
     Raises:
-        OSError: The file cannot be read or decoded.
+        OSError: The file cannot be read or decoded, or its image has more than
+            :data:`MAX_TEXTURE_PIXELS` pixels.
     """
-    from PIL import Image
-
-    with open_input(path, "the floor texture") as raw, Image.open(raw) as image:
+    with _texture_image(path, "the floor texture") as image:
         grey = image.convert("L")
     return np.ascontiguousarray(np.asarray(grey, dtype=np.float64) / 255.0)
 
@@ -244,13 +275,15 @@ def mean_colour(path: str) -> tuple[float, float, float]:
     camera sees, on average over its surface.
 
     Raises:
-        OSError: The file cannot be read or decoded.
+        OSError: The file cannot be read or decoded, or its image has more than
+            :data:`MAX_TEXTURE_PIXELS` pixels.
     """
-    from PIL import Image
+    from PIL import ImageStat
 
-    with open_input(path, "the wall texture") as raw, Image.open(raw) as image:
-        rgb = np.asarray(image.convert("RGB"), dtype=np.float64)
-    red, green, blue = (float(min(max(v / 255.0, 0.0), 1.0)) for v in rgb.mean(axis=(0, 1)))
+    with _texture_image(path, "the wall texture") as image:
+        # The mean of each band from its histogram (exact sums), with no copy of the pixels.
+        means = ImageStat.Stat(image.convert("RGB")).mean
+    red, green, blue = (float(min(max(v / 255.0, 0.0), 1.0)) for v in means)
     return red, green, blue
 
 

@@ -18,7 +18,7 @@ from .definition import ProtoDefinition, externproto_urls, parse_definition
 from .own_robot import OWN_ROBOT_TYPES, added_devices, outermost, with_devices
 from .resolver import ProtoSource, ProtoUnavailableError, Resolver
 from .stand_ins import STAND_INS
-from .syntax import Node, line_of, parse_nodes, tokenize
+from .syntax import Node, line_of, located_error, parse_nodes, tokenize
 from .templates import evaluate_template
 from .values import field_value
 
@@ -59,6 +59,10 @@ _HIDDEN_LINE = re.compile(r"^[ \t]*hidden[ \t][^\n]*$", re.MULTILINE)
 MAX_NESTING = 24
 #: Most instances expanded in one world.
 MAX_INSTANCES = 20_000
+#: Most templates run in one world: instances of a procedural PROTO with the same fields share
+#: one run; each run is a process of its own (a few milliseconds), so a PROTO that instantiates
+#: itself with fields that differ each time would otherwise take minutes.
+MAX_TEMPLATE_RUNS = 4_000
 
 
 @dataclass
@@ -104,6 +108,8 @@ class Expander:
         self._definitions: dict[tuple[str, str], ProtoDefinition | None] = {}
         self._instances = 0
         self._said: set[str] = set()
+        #: The text each template made, by PROTO and fields.
+        self._made: dict[tuple[str, str, str], str] = {}
 
     def expand_world(self) -> str:
         """The world's text with every PROTO instance that can be read expanded."""
@@ -281,26 +287,51 @@ class Expander:
             )
         body = definition.body
         if definition.language is not None:
-            template_fields = {
-                name: {
-                    "value": field_value(d.kind, values[name]),
-                    "defaultValue": field_value(d.kind, d.default),
+            try:
+                template_fields = {
+                    name: {
+                        "value": field_value(d.kind, values[name]),
+                        "defaultValue": field_value(d.kind, d.default),
+                    }
+                    for name, d in definition.fields.items()
                 }
-                for name, d in definition.fields.items()
-            }
-            body = evaluate_template(
-                definition.language,
-                body,
-                template_fields,
-                self._context(definition),
-                definition.origin,
-            )
+            except ValueError as error:
+                raise located_error(f"{where}: {error}", self.world) from None
+            made = self._template(definition, definition.language, template_fields)
+            if made is None:
+                return None
+            body = made
         body = self._substitute(body, values, definition)
         body = self._expand(body, inner, depth + 1)
         flat = " ".join(token.text for token in tokenize(body, definition.origin))
         if node.def_name:
             flat = _with_def(flat, node.def_name)
         return flat
+
+    def _template(
+        self, definition: ProtoDefinition, language: str, fields: dict[str, Any]
+    ) -> str | None:
+        """The text a procedural PROTO's template makes for these fields (run once for each
+        PROTO and fields), or None past :data:`MAX_TEMPLATE_RUNS`."""
+        key = (definition.origin, definition.name, repr(fields))
+        made = self._made.get(key)
+        if made is not None:
+            return made
+        if len(self._made) >= MAX_TEMPLATE_RUNS:
+            self._say(
+                f"the world runs more than {MAX_TEMPLATE_RUNS} PROTO templates (instances whose"
+                " fields differ); the rest are not expanded"
+            )
+            return None
+        made = evaluate_template(
+            language,
+            definition.body,
+            fields,
+            self._context(definition),
+            definition.origin,
+        )
+        self._made[key] = made
+        return made
 
     def _context(self, definition: ProtoDefinition) -> dict[str, Any]:
         platform = {"win32": "windows", "darwin": "mac"}.get(sys.platform, "linux")

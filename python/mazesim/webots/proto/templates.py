@@ -6,12 +6,15 @@ of the helper modules become constants defined from ``template_modules``."""
 
 from __future__ import annotations
 
+import faulthandler
 import json
 import math
 import os
 import re
 import resource
+import select
 import signal
+import time
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
@@ -38,6 +41,12 @@ class TemplateBudget:
 
 #: The budget of every template.
 BUDGET = TemplateBudget()
+#: Most characters of text one template may make (a PROTO's whole body is rarely a megabyte; a
+#: template that repeats a node ten million times would ask for gigabytes once parsed).
+MAX_TEMPLATE_TEXT = 32 * 1024 * 1024
+#: Wall-clock seconds a template's process may take, a multiple of the processor budget: one
+#: that waits without computing (on a file that never ends) is stopped too.
+_WALL_SECONDS = 6 * BUDGET.seconds
 
 #: Lua instructions between two looks at the clock.
 _LUA_CLOCK_EVERY = 10_000
@@ -137,12 +146,36 @@ def _javascript(body: str, fields: dict[str, Any], context: dict[str, Any], orig
     import quickjs  # noqa: F401 - a missing engine is said here, not in the child
 
     outcome = _isolated(lambda: _run_javascript(program), BUDGET.seconds)
+    return _text_of(outcome, "JavaScript", origin)
+
+
+def _text_of(outcome: dict[str, Any], language: str, origin: str) -> str:
+    """The text a template's process made, or the ``WorldFormatError`` of why it made none."""
     if "text" in outcome:
         return str(outcome["text"])
     first = str(outcome.get("error", ""))
-    if outcome.get("over_budget") or "interrupted" in first or "out of memory" in first:
-        raise located_error(_over_budget("JavaScript", first or "still running"), origin)
-    raise located_error(f"its JavaScript template fails: {first}", origin)
+    if outcome.get("crashed"):
+        raise located_error(
+            f"its {language} template crashed the template engine ({outcome['crashed']}); fix"
+            " the PROTO",
+            origin,
+        )
+    over = ("interrupted", "out of memory", "not enough memory", "__mazesim_over_budget__")
+    if outcome.get("over_budget") or any(word in first for word in over):
+        what = first.replace("__mazesim_over_budget__", "still running")
+        raise located_error(_over_budget(language, what or "still running"), origin)
+    raise located_error(f"its {language} template fails: {first}", origin)
+
+
+def _made(text: str) -> dict[str, Any]:
+    """A template's outcome for the text it made: the text, or why it is too long."""
+    if len(text) > MAX_TEMPLATE_TEXT:
+        return {
+            "error": f"it makes {len(text)} characters of text, more than the"
+            f" {MAX_TEMPLATE_TEXT} a template may make (a template that repeats a node without"
+            " end; fix the PROTO)"
+        }
+    return {"text": text}
 
 
 def _run_javascript(program: str) -> dict[str, Any]:
@@ -157,19 +190,24 @@ def _run_javascript(program: str) -> dict[str, Any]:
     engine.add_callable("__read_text", _read_text)
     engine.eval("var __errors = [];")
     try:
-        return {"text": str(engine.eval(program))}
+        return _made(str(engine.eval(program)))
     except quickjs.JSException as error:
         first = str(error).strip().splitlines()[0] if str(error).strip() else repr(error)
         return {"error": first}
 
 
-def _isolated(run: Callable[[], dict[str, Any]], seconds: float) -> dict[str, Any]:
+def _isolated(
+    run: Callable[[], dict[str, Any]], seconds: float, wall_seconds: float | None = None
+) -> dict[str, Any]:
     """What ``run`` returns, run in a child process of its own under ``seconds`` of processor
     time (``RLIMIT_CPU``, whole seconds): the one way a template engine runs when it cannot be
     stopped from inside. QuickJS's time limit is not looked at in its regular expressions
     (``/^(a+)+$/`` on 40 letters runs for hours) and it heeds no Ctrl-C while it runs; a child
     is stopped either way: Ctrl-C kills it and goes on as a ``KeyboardInterrupt``, the
-    processor limit kills it (``{"over_budget": True}``)."""
+    processor limit kills it (``{"over_budget": True}``), and so does running more than
+    ``wall_seconds`` of wall-clock time (by default :data:`_WALL_SECONDS`: waiting on a file
+    that never ends); a child the
+    engine crashes (a Lua template's forged bytecode) reports ``{"crashed": "SIGSEGV"}``."""
     read_end, write_end = os.pipe()
     child = os.fork()
     if child == 0:  # pragma: no cover - the child reports through the pipe
@@ -177,6 +215,7 @@ def _isolated(run: Callable[[], dict[str, Any]], seconds: float) -> dict[str, An
         try:
             os.close(read_end)
             signal.signal(signal.SIGINT, signal.SIG_DFL)
+            faulthandler.disable()  # an engine that crashes is reported, not dumped
             limit = max(1, math.ceil(seconds))
             resource.setrlimit(resource.RLIMIT_CPU, (limit, limit + 1))
             try:
@@ -192,8 +231,17 @@ def _isolated(run: Callable[[], dict[str, Any]], seconds: float) -> dict[str, An
             os._exit(status)
     os.close(write_end)
     chunks: list[bytes] = []
+    deadline = time.monotonic() + (_WALL_SECONDS if wall_seconds is None else wall_seconds)
     try:
-        while chunk := os.read(read_end, 1 << 20):
+        while True:
+            left = deadline - time.monotonic()
+            if left <= 0 or not select.select([read_end], [], [], left)[0]:
+                os.kill(child, signal.SIGKILL)
+                os.waitpid(child, 0)
+                return {"over_budget": True}
+            chunk = os.read(read_end, 1 << 20)
+            if not chunk:
+                break
             chunks.append(chunk)
         _, status = os.waitpid(child, 0)
     except BaseException:  # Ctrl-C (or any error) while the child runs: it ends now
@@ -205,6 +253,8 @@ def _isolated(run: Callable[[], dict[str, Any]], seconds: float) -> dict[str, An
     if os.WIFEXITED(status) and os.WEXITSTATUS(status) == 0:
         outcome: dict[str, Any] = json.loads(b"".join(chunks))
         return outcome
+    if os.WIFSIGNALED(status) and os.WTERMSIG(status) not in (signal.SIGXCPU, signal.SIGKILL):
+        return {"crashed": signal.Signals(os.WTERMSIG(status)).name}
     return {"over_budget": True}
 
 
@@ -228,7 +278,10 @@ def _read_text(path: Any) -> str:
 #: a template cannot lift the hook, and ``require`` hands out the same sandboxed ``io``, a
 #: ``debug`` of ``getinfo`` alone (a template names its texture files by its source) and no
 #: native library (``package.loadlib`` and the C searchers are gone; ``dofile`` and
-#: ``loadfile``, which read any file unbounded, too).
+#: ``loadfile``, which read any file unbounded, too), only the modules mazesim provides (the
+#: searcher of Lua files, which opens any path, is gone) and ``load`` of text alone (Lua does
+#: not check bytecode: ``string.dump`` is gone too). The template runs in a process of its own
+#: (:func:`_isolated`): the clock hook does not stop a pattern match, which runs in C.
 _LUA_SANDBOX = """
 function(read_text, seconds, every, pulse)
   local clock, sethook, create, wrap = os.clock, debug.sethook, coroutine.create, coroutine.wrap
@@ -286,9 +339,13 @@ function(read_text, seconds, every, pulse)
   -- What require hands out is the sandbox's too: no native library, no real io or debug.
   package.loaded.io = io
   package.loaded.debug = {getinfo = function() return {source = "=proto", short_src = "proto"} end}
-  package.loadlib = nil; package.cpath = ""
-  package.searchers[3] = nil; package.searchers[4] = nil
+  package.loadlib = nil; package.cpath = ""; package.path = ""
+  package.searchers[2] = nil; package.searchers[3] = nil; package.searchers[4] = nil
   dofile = nil; loadfile = nil
+  -- Text chunks only: Lua does not check bytecode, and a forged chunk crashes it.
+  local text_load = load
+  load = function(chunk, name, _, env) return text_load(chunk, name, "t", env) end
+  string.dump = nil
   debug = nil
 end
 """
@@ -299,14 +356,8 @@ def _pulse() -> None:
 
 
 def _lua(body: str, fields: dict[str, Any], context: dict[str, Any], origin: str) -> str:
-    import lupa
+    import lupa  # noqa: F401 - a missing engine is said here, not in the child
 
-    runtime = lupa.LuaRuntime(
-        unpack_returned_tuples=True, register_eval=False, max_memory=BUDGET.memory_bytes
-    )
-    preload = runtime.eval("package.preload")
-    for name, source in LUA_MODULES.items():
-        preload[name] = runtime.eval(f"function(...) {source} end")
     script = [
         "local __out = {}",
         f"fields = {to_lua(fields)}",
@@ -320,17 +371,31 @@ def _lua(body: str, fields: dict[str, Any], context: dict[str, Any], origin: str
         else:
             script.append(content)
     script.append("return table.concat(__out)")
+    program = "return function() " + "\n".join(script) + "\nend"
+    return _text_of(_isolated(lambda: _run_lua(program), BUDGET.seconds), "Lua", origin)
+
+
+def _run_lua(program: str) -> dict[str, Any]:
+    """Runs a Lua template's program in Lua 5.4 under the budget, in the sandbox: its text,
+    or the engine's error."""
+    import lupa
+
+    runtime = lupa.LuaRuntime(
+        unpack_returned_tuples=True, register_eval=False, max_memory=BUDGET.memory_bytes
+    )
+    preload = runtime.eval("package.preload")
+    for name, source in LUA_MODULES.items():
+        preload[name] = runtime.eval(f"function(...) {source} end")
     try:
-        chunk = runtime.execute("return function() " + "\n".join(script) + "\nend")
-        # The hook calls back into Python now and then, so Ctrl-C stops a template too.
+        chunk = runtime.execute(program)
         runtime.eval(_LUA_SANDBOX)(_read_text, BUDGET.seconds, _LUA_CLOCK_EVERY, _pulse)
-        return str(chunk())
+        return _made(str(chunk()))
     except lupa.LuaMemoryError as error:
-        raise located_error(_over_budget("Lua", str(error) or "out of memory"), origin) from None
+        return {"error": str(error) or "out of memory"}
     except lupa.LuaError as error:
-        if "__mazesim_over_budget__" in str(error):
-            raise located_error(_over_budget("Lua", "still running"), origin) from None
-        raise located_error(f"its Lua template fails: {error}", origin) from None
+        return {"error": str(error)}
+    except UnicodeDecodeError as error:
+        return {"error": f"the text it makes is not UTF-8 ({error.reason} at byte {error.start})"}
 
 
 def evaluate_template(

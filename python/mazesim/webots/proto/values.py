@@ -5,6 +5,7 @@
 from __future__ import annotations
 
 import json
+import math
 from typing import Any
 
 from .syntax import Field, Node, Token, parse_nodes
@@ -61,7 +62,7 @@ def field_value(kind: str, text: str) -> Any:
         return (nodes[0] if nodes else None) if single else nodes
     scalars = [s for s in _scalars(parsed.tokens)]
     if base in ("Int32", "Float"):
-        numbers = [int(s) if base == "Int32" else s for s in scalars if isinstance(s, float)]
+        numbers = [_whole(s) if base == "Int32" else s for s in scalars if isinstance(s, float)]
         return (numbers[0] if numbers else 0) if single else numbers
     if base == "Bool":
         flags = [bool(s) for s in scalars if isinstance(s, bool)]
@@ -78,6 +79,17 @@ def field_value(kind: str, text: str) -> Any:
     ]
     groups = [g for g in groups if len(g) == len(keys)]
     return (groups[0] if groups else dict.fromkeys(keys, 0.0)) if single else groups
+
+
+def _whole(number: float) -> int:
+    """An SFInt32 field's value (a number written with a fraction is cut to its whole part).
+
+    Raises:
+        ValueError: The number is not finite (``nan``, ``inf``, ``1e400``).
+    """
+    if not math.isfinite(number):
+        raise ValueError(f"an SFInt32 field: expected a whole number, found {number}")
+    return int(number)
 
 
 def to_javascript(value: Any) -> str:
