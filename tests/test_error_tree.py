@@ -43,6 +43,29 @@ def test_an_array_of_the_wrong_shape_is_an_invalid_argument_and_still_an_index_e
     assert str(again) == str(caught.value)
 
 
+def test_a_failure_no_check_names_says_what_was_expected_and_what_was_found() -> None:
+    from mazesim.learn.discretise import encode_state
+
+    with pytest.raises(InvalidArgumentError) as caught:
+        encode_state([float("nan")] * 6)
+    message = str(caught.value)
+    assert message.startswith("encode_state: the arguments do not fit: ValueError")
+    assert message.endswith(
+        "; expected levels: an array of numbers; found levels=[nan, nan, nan, nan, nan, nan]"
+    )
+
+
+def test_a_long_value_is_shortened_in_what_was_found() -> None:
+    from mazesim.odometry import advance
+
+    with pytest.raises(InvalidArgumentError) as caught:
+        advance(np.zeros(0), [1.0] * 1000, [1.0], 0.05)
+    message = str(caught.value)
+    assert "expected pose: a numpy array of float64, left: an array of numbers" in message
+    assert "found pose=array([], dtype=float64), left=[1.0, 1.0" in message
+    assert "characters ...]" in message and len(message) < 600
+
+
 def test_text_for_an_array_is_named_as_not_numbers() -> None:
     from mazesim.learn.discretise import format_levels
 
@@ -237,3 +260,23 @@ def test_any_failure_with_an_argument_its_annotation_does_not_take_names_that_ar
         checked(divided)([0.0])
     with pytest.raises(ZeroDivisionError):  # the caller's own code, fitting arguments
         checked(divided)([0])
+
+
+def test_an_abstract_class_made_as_it_is_names_what_to_define_and_is_still_a_type_error() -> None:
+    from mazesim.barcode import Alg7Decoder, CodeBook, Decoder
+
+    with pytest.raises(TypeError) as caught:
+        Decoder(CodeBook.default())  # type: ignore[abstract]
+    assert isinstance(caught.value, InvalidArgumentError)
+    assert str(caught.value) == (
+        "Decoder: expected a subclass that defines _decode (such as Alg7Decoder, "
+        "RobustDecoder), found the abstract Decoder itself"
+    )
+
+    class Own(Decoder):
+        def _decode(self, samples: object) -> None:
+            return None
+
+    assert isinstance(Own(CodeBook.default()), Decoder)  # a subclass of the user's is made
+    decoder = Alg7Decoder(CodeBook.default())
+    assert type(pickle.loads(pickle.dumps(decoder))) is Alg7Decoder

@@ -60,6 +60,7 @@ from mazesim.errors import (
     WrongTypeError,
     _a_type,
     _closest_name,
+    _shortened,
     _shown,
 )
 
@@ -148,6 +149,23 @@ def _hint_name(hint: Any) -> str:
     if isinstance(hint, type):
         return hint.__name__
     return str(hint).replace("typing.", "").replace("collections.abc.", "")
+
+
+#: The characters of one argument's value a catch-all message shows (:meth:`_Parameters.given`).
+GIVEN_CHARACTERS = 60
+
+
+def _expected(hint: Any) -> str:
+    """An annotation as a message says what it expects: "an array of numbers" for numpy's
+    ``ArrayLike`` (whose union is a paragraph), "any value" for none, else its name."""
+    if hint is Any:
+        return "any value"
+    if _is_array_like(typing.get_args(hint)):
+        return "an array of numbers"
+    if typing.get_origin(hint) is np.ndarray:
+        kinds = [typing.get_args(a) for a in typing.get_args(hint)[1:]]
+        return f"a numpy array of {kinds[0][0].__name__}" if kinds and kinds[0] else "a numpy array"
+    return _shortened(_hint_name(hint), GIVEN_CHARACTERS)
 
 
 def refusal(value: Any, hint: Any) -> str | None:
@@ -698,6 +716,23 @@ class _Parameters:
                 self.fitting_text.clear()
             self.fitting_text.add(key)
 
+    def given(self, args: tuple[Any, ...], kwargs: dict[str, Any]) -> str:
+        """What a call was given and what its annotations expected, for the message of a
+        failure no check names ("expected levels: an array of numbers; found levels=[nan]"):
+        every refusal then says what was expected and what was found."""
+        if not self.ready:
+            self.prepare()
+        named = [*zip(self.positional, args)]
+        named += [((n, self.by_name.get(n, Any)), v) for n, v in kwargs.items()]
+        given = [(name, hint, value) for (name, hint), value in named if name != self.first]
+        if not given:
+            return ""
+        expected = ", ".join(f"{name}: {_expected(hint)}" for name, hint, _ in given)
+        found = ", ".join(
+            f"{name}={_shortened(_shown(value), GIVEN_CHARACTERS)}" for name, _, value in given
+        )
+        return f"expected {expected}; found {found}"
+
     def refuse(self, name: str, value: Any, hint: Any) -> None:
         reason = refusal(value, hint)
         if reason is not None:
@@ -758,7 +793,7 @@ def checked(func: Callable[..., Any], *, method: bool = False) -> Callable[..., 
             trace = failure.__traceback__
             if isinstance(failure, TypeError) and trace is not None and trace.tb_next is None:
                 raise error(f"{func.__qualname__}: {failure}") from None  # wrong arguments
-            instead = tree(func.__qualname__, failure, True)
+            instead = tree(func.__qualname__, failure, True, parameters.given(args, kwargs))
             if instead is failure:
                 raise
             raise instead from failure
@@ -798,6 +833,27 @@ def _refuse_any_argument(cls: type) -> Callable[..., None]:
     return __init__
 
 
+def _refuse_abstract(cls: type, *args: Any, **kwargs: Any) -> Any:
+    """The ``__new__`` of a public abstract class: a class that still lacks a method is refused
+    as a :class:`~mazesim.errors.WrongTypeError` (a ``TypeError``) that names what to define
+    and the subclasses there are; any other is made as ``object`` makes it."""
+    if inspect.isabstract(cls):
+        lacking = ", ".join(sorted(cls.__abstractmethods__))  # type: ignore[attr-defined]
+        ready = sorted(sub.__name__ for sub in _subclasses(cls) if not inspect.isabstract(sub))
+        raise WrongTypeError(
+            f"{cls.__qualname__}: expected a subclass that defines {lacking}"
+            + (f" (such as {', '.join(ready)})" if ready else "")
+            + f", found the abstract {cls.__qualname__} itself"
+        )
+    return object.__new__(cls)
+
+
+def _subclasses(cls: type) -> list[type]:
+    """Every subclass of ``cls``, however deep."""
+    subs: list[type] = cls.__subclasses__()
+    return [deeper for sub in subs for deeper in (sub, *_subclasses(sub))]
+
+
 def _guard_class(cls: type) -> None:
     if issubclass(cls, BaseException) or getattr(cls, "_is_protocol", False):
         return
@@ -812,6 +868,8 @@ def _guard_class(cls: type) -> None:
         inherited is object.__init__ and cls.__new__ is object.__new__ and not cls.__subclasses__()
     ):
         cls.__init__ = checked(_refuse_any_argument(cls), method=True)  # type: ignore[method-assign]
+    if inspect.isabstract(cls) and "__new__" not in vars(cls) and cls.__new__ is object.__new__:
+        cls.__new__ = _refuse_abstract  # type: ignore[method-assign]
     made_by = getattr(vars(cls).get("__new__"), "__func__", None)
     if inspect.isfunction(made_by):  # a NamedTuple's constructor
         cls.__new__ = staticmethod(checked(made_by, method=True))  # type: ignore[method-assign]

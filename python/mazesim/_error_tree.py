@@ -146,16 +146,22 @@ def _left_alone(error: BaseException) -> bool:
     return not _raised_by_library(error)
 
 
-def in_the_tree(where: str, error: BaseException, argument_failure: bool) -> BaseException:
+def in_the_tree(
+    where: str, error: BaseException, argument_failure: bool, given: str = ""
+) -> BaseException:
     """The exception to raise instead of ``error``, which ended the public function ``where``
     (its qualified name); ``error`` itself when it is left alone. ``argument_failure``: the
-    error is a built-in argument failure whose arguments fit their annotations."""
+    error is a built-in argument failure whose arguments fit their annotations; ``given``: what
+    the arguments were expected to be and were ("expected x: float; found x=nan"), said after
+    the failure."""
     if _left_alone(error):
         return error
     if isinstance(error, OSError):
         return io_error(error, where)
     if argument_failure:
         message = f"{where}: the arguments do not fit: {_quoted(error)}"
+        if given:
+            message += f"; {given}"
         return made_as(InvalidArgumentError, type(error), message)
     message = f"{where}: internal error, please report: {_quoted(error)}"
     return made_as(InternalError, type(error), message)
