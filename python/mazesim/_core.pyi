@@ -253,6 +253,15 @@ class World:
         """The bare floor's colour as a camera sees it, (red, green, blue) in [0, 1], or None
         (the grey of its reflectance)."""
     def floor_reflectance(self, x: float, y: float) -> float: ...
+    def with_paint_moved(
+        self, paint: Sequence[int], from_pose: Sequence[float], to_pose: Sequence[float]
+    ) -> World:
+        """This world with the ``[[paint]]`` entries ``paint`` moved by the rigid motion taking
+        ``from_pose`` (x, y, yaw) to ``to_pose``, as a supervisor moves a floor mark's node.
+
+        Raises:
+            InvalidArgumentError: An index past the paint, or paint moved beyond the limits.
+        """
     def __reduce__(self) -> tuple[Any, tuple[str, str]]:
         """Pickles as its world file text and source name."""
     def __copy__(self) -> World:
@@ -468,13 +477,15 @@ class Simulator:
         bodies: Sequence[int],
         from_pose: Sequence[float],
         to_pose: Sequence[float],
+        paint: Sequence[int] | None = None,
     ) -> None:
-        """Moves the ``[[walls]]`` entries ``walls`` and the movable bodies ``bodies`` by the
-        rigid motion taking ``from_pose`` (x, y, yaw) to ``to_pose``, bodies at rest.
+        """Moves the ``[[walls]]`` entries ``walls``, the movable bodies ``bodies`` and the
+        ``[[paint]]`` entries ``paint`` (floor marks) by the rigid motion taking ``from_pose``
+        (x, y, yaw) to ``to_pose``, bodies at rest; the ground sensors read the paint there.
 
         Raises:
-            InvalidArgumentError: An index past the walls or bodies, or a pose beyond the
-                limits; nothing moved.
+            InvalidArgumentError: An index past the walls, bodies or paint, or a pose beyond
+                the limits; nothing moved.
         """
     def change_world(
         self,

@@ -72,7 +72,7 @@ impl PySimulator {
 }
 
 /// A sequence of at most `most` indices, named `name` in errors.
-fn indices(obj: &Bound<'_, PyAny>, name: &str, most: usize) -> PyResult<Vec<usize>> {
+pub(crate) fn indices(obj: &Bound<'_, PyAny>, name: &str, most: usize) -> PyResult<Vec<usize>> {
     let items = bounded_items(obj, name, "indices", most)?;
     (items.iter().enumerate())
         .map(|(i, item)| {
@@ -83,7 +83,7 @@ fn indices(obj: &Bound<'_, PyAny>, name: &str, most: usize) -> PyResult<Vec<usiz
 }
 
 /// A pose (x, y, yaw) given as a sequence of three real numbers, named `name` in errors.
-fn pose_argument(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<[f64; 3]> {
+pub(crate) fn pose_argument(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<[f64; 3]> {
     let items = bounded_items(obj, name, "real numbers (x, y, yaw)", 3)?;
     let values: Vec<f64> = (items.iter().enumerate())
         .map(|(i, item)| item.extract::<Real>()?.value(&format!("{name}[{i}]")))
@@ -500,24 +500,30 @@ impl PySimulator {
     }
 
     /// Moves an object of the world, as a supervisor moves a node: the `[[walls]]` entries
-    /// `walls` and the movable bodies `bodies` (indices, world order) by the rigid motion that
-    /// takes the pose `from_pose` (x, y, yaw) to `to_pose`; each body is put at rest. The robots
-    /// meet them there from the next step on. Nothing moves when an index or a pose is refused.
-    #[pyo3(text_signature = "($self, walls, bodies, from_pose, to_pose)")]
+    /// `walls`, the movable bodies `bodies` (indices, world order) and the `[[paint]]` entries
+    /// `paint` (its floor marks) by the rigid motion that takes the pose `from_pose` (x, y, yaw)
+    /// to `to_pose`; each body is put at rest. The robots meet them there from the next step
+    /// on, and their ground sensors read the paint there. Nothing moves when an index or a pose
+    /// is refused.
+    #[pyo3(signature = (walls, bodies, from_pose, to_pose, paint=None), text_signature = "($self, walls, bodies, from_pose, to_pose, paint=None)")]
     fn move_solid(
         &self,
         walls: &Bound<'_, PyAny>,
         bodies: &Bound<'_, PyAny>,
         from_pose: &Bound<'_, PyAny>,
         to_pose: &Bound<'_, PyAny>,
+        paint: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<()> {
         let walls = indices(walls, "walls", mazesim_core::limits::MAX_WALLS)?;
         let bodies = indices(bodies, "bodies", mazesim_core::limits::MAX_BODIES)?;
+        let most = mazesim_core::limits::MAX_PAINT_REGIONS;
+        let paint = paint.map_or(Ok(Vec::new()), |p| indices(p, "paint", most))?;
         let motion = mazesim_core::world::Motion {
             from: pose_argument(from_pose, "from_pose")?,
             to: pose_argument(to_pose, "to_pose")?,
         };
-        self.swarm(|s| s.move_solid(&walls, &bodies, motion))?.py()
+        self.swarm(|s| s.move_solid(&walls, &bodies, &paint, motion))?
+            .py()
     }
 
     /// Runs on in `world` from the next step on, as a Webots supervisor imports nodes into the

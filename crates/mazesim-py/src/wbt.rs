@@ -94,6 +94,17 @@ fn robot_and_floor(out: &Bound<'_, PyDict>, import: &WbtImport) -> PyResult<()> 
     })?;
     out.set_item("wall_textures", walls)?;
     out.set_item("floor_paint", import.paint.len())?;
+    // What a supervisor moves with a node: the floor marks its line holds (paint indices).
+    let held = (import.paint_owners.iter().enumerate())
+        .filter(|(_, owners)| !owners.is_empty())
+        .map(|(i, owners)| {
+            let d = PyDict::new(out.py());
+            d.set_item("paint", i)?;
+            d.set_item("owners", owners.clone())?;
+            Ok(d)
+        })
+        .collect::<PyResult<Vec<_>>>()?;
+    out.set_item("floor_marks", held)?;
     Ok(())
 }
 

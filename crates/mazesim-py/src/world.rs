@@ -12,6 +12,7 @@ use pyo3::types::PyDict;
 use crate::args::{IntArg, Label, PathArg, Real, SourceName, Text};
 use crate::errors::{invalid, IntoPy};
 use crate::guard::{enter, enter_detached};
+use crate::simulator::{indices, pose_argument};
 
 /// A maze world: walls, floor paint, checkpoints, goal and start pose.
 #[pyclass(name = "World", module = "mazesim._core", frozen)]
@@ -383,6 +384,28 @@ impl PyWorld {
     fn floor_reflectance(&self, x: Real, y: Real) -> PyResult<f64> {
         let (x, y) = (x.coordinate("x")?, y.coordinate("y")?);
         enter(|| Ok(self.inner.floor().reflectance_at([x, y])))
+    }
+
+    /// This world with the `[[paint]]` entries `paint` (indices) moved by the rigid motion that
+    /// takes the pose `from_pose` (x, y, yaw) to `to_pose`, as a supervisor moves the node that
+    /// holds a floor mark; refused when an index is past the paint or the paint would leave the
+    /// limits.
+    #[pyo3(text_signature = "($self, paint, from_pose, to_pose)")]
+    fn with_paint_moved(
+        &self,
+        paint: &Bound<'_, PyAny>,
+        from_pose: &Bound<'_, PyAny>,
+        to_pose: &Bound<'_, PyAny>,
+    ) -> PyResult<Self> {
+        let paint = indices(paint, "paint", mazesim_core::limits::MAX_PAINT_REGIONS)?;
+        let motion = mazesim_core::world::Motion {
+            from: pose_argument(from_pose, "from_pose")?,
+            to: pose_argument(to_pose, "to_pose")?,
+        };
+        let world = enter(|| self.inner.with_paint_moved(&paint, motion).py())?;
+        Ok(PyWorld {
+            inner: Arc::new(world),
+        })
     }
 
     fn __eq__(&self, other: &Bound<'_, PyAny>) -> PyResult<bool> {

@@ -624,6 +624,7 @@ class Camera(_Sensor):
         self._sampled: _Sample | None = None
         self._rendered_at: _Sample | None = None
         self._rendered_walls: WallBoxes | None = None
+        self._rendered_floor: FloorPaint | None = None
         self._value = None
         #: Whether the simulator holds this robot alone (it has no ``other_robots``).
         self._alone = False
@@ -702,14 +703,15 @@ class Camera(_Sensor):
     def _drawn(self) -> npt.NDArray[np.uint8] | None:
         """The image of the last sample, drawn at the first call that asks for it (a camera
         enabled and never read draws nothing), and drawn again only when the robot, another
-        robot or a movable body has moved since the last image; None before the first
-        sample."""
+        robot or a movable body has moved (or a supervisor moved walls or floor marks) since
+        the last image; None before the first sample."""
         if self._sampled is None or self._walls is None or self._floor is None:
             return None
         if (
             self._pixels is None
             or self._rendered_at != self._sampled
             or self._rendered_walls is not self._walls
+            or self._rendered_floor is not self._floor
         ):
             pose, robots, bodies = self._sampled
             balls = [body for body in bodies if isinstance(body, Ball)]
@@ -718,6 +720,7 @@ class Camera(_Sensor):
             self._pixels = render(self._view, self._walls, self._floor, pose, robots, balls, blocks)
             self._rendered_at = self._sampled
             self._rendered_walls = self._walls
+            self._rendered_floor = self._floor
         return self._pixels
 
     def _other_robots(self, fleet: list[tuple[Any, Sequence[float]]]) -> list[RobotBody]:

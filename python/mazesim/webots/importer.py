@@ -175,13 +175,14 @@ class ImportReport(TypedDict):
     (see :class:`WorldRobot`); ``missing_devices`` the e-puck's own devices (``ps0``,
     ``gs0``, ``camera``...) the robot's node lacks, which Webots' ``getDevice`` does not find
     (a plain robot node's missing children; an E-puck's ground sensors without their module);
-    ``floor_paint`` the number of paint
-    rectangles the floor textures gave; ``bodies`` the movable bodies (``kind``, ``center``,
-    ``size`` and ``yaw`` or ``radius``, ``mass`` in kg, floor ``friction``, ``owners`` and
-    ``reflectance`` as an obstacle's, the ``colour`` a camera sees, whether it is a ``sphere``
-    and its ``height`` in m); ``sensed_only`` the obstacles that only the infra-red
-    sensors and the camera meet (``kind``, ``center``, ``size`` and ``yaw`` or ``radius``, and
-    ``reflectance`` as an obstacle's: visual-only shapes, of no Solid with a
+    ``floor_paint`` the number of paint rectangles the floor textures gave; ``floor_marks``
+    the floor marks held by nodes (each its ``paint`` index and the ``owners``' lines: a
+    supervisor that moves a node moves them); ``bodies`` the movable bodies (``kind``,
+    ``center``, ``size`` and ``yaw`` or ``radius``, ``mass`` in kg, floor ``friction``,
+    ``owners`` and ``reflectance`` as an obstacle's, the ``colour`` a camera sees, whether it
+    is a ``sphere`` and its ``height`` in m); ``sensed_only`` the obstacles that only the
+    infra-red sensors and the camera meet (``kind``, ``center``, ``size`` and ``yaw`` or
+    ``radius``, and ``reflectance`` as an obstacle's: visual-only shapes, of no Solid with a
     ``boundingObject``, in the proximity sensors' rays, which Webots' infra-red rays see and
     nothing collides with); ``one_controller_warnings``
     those of ``warnings`` that concern a run of one controller only (the world's other e-pucks,
@@ -206,6 +207,7 @@ class ImportReport(TypedDict):
     floor_textures: list[FloorTexture]
     wall_textures: list[WallTexture]
     floor_paint: int
+    floor_marks: list[dict[str, object]]
     protos: ProtoReport
     recognition: RecognitionReport
 

@@ -42,6 +42,7 @@ class Held:
     Attributes:
         walls: The indices of its walls among the world's ``[[walls]]``.
         bodies: The indices of its movable bodies, world order.
+        paint: The indices of its floor marks among the world's ``[[paint]]``.
         obstacle: Whether it is a robot that is no e-puck, whose collision shapes are the
             world's obstacles where the world is simulated (not in its own import, where the
             e-puck stands in for it).
@@ -49,16 +50,17 @@ class Held:
 
     walls: list[int] = field(default_factory=list)
     bodies: list[int] = field(default_factory=list)
+    paint: list[int] = field(default_factory=list)
     obstacle: bool = False
 
     def __bool__(self) -> bool:
-        return bool(self.walls or self.bodies or self.obstacle)
+        return bool(self.walls or self.bodies or self.paint or self.obstacle)
 
 
 def held_by_line(report: Mapping[str, Any]) -> dict[int, Held]:
     """What the nodes of each line of the world file hold, read from an import report's
     ``obstacles`` and ``sensed_only`` walls (their ``owners`` and ``walls``) and ``bodies``
-    (their ``owners``)."""
+    (their ``owners``) and ``floor_marks`` (their ``owners`` and ``paint``)."""
     held: dict[int, Held] = {}
     for obstacle in [*report.get("obstacles", []), *report.get("sensed_only", [])]:
         first, count = obstacle.get("walls", (0, 0))
@@ -67,6 +69,9 @@ def held_by_line(report: Mapping[str, Any]) -> dict[int, Held]:
     for index, body in enumerate(report.get("bodies", [])):
         for line in body.get("owners", []):
             held.setdefault(int(line), Held()).bodies.append(index)
+    for mark in report.get("floor_marks", []):
+        for line in mark.get("owners", []):
+            held.setdefault(int(line), Held()).paint.append(int(mark["paint"]))
     return held
 
 
@@ -101,8 +106,8 @@ class WorldSolids:
         return {line: dict(fields) for line, fields in self._light_fields.items()}
 
     def node_moves(self) -> dict[int, tuple[Pose2, Pose2]]:
-        """The nodes holding walls or bodies that a supervisor moved since the start or the
-        world's last reset, by line: their pose seen from above in the file and now."""
+        """The nodes holding walls or floor marks that a supervisor moved since the start or
+        the world's last reset, by line: their pose seen from above in the file and now."""
         return dict(self._moves)
 
     def forget_moves(self) -> None:
@@ -139,10 +144,11 @@ class WorldSolids:
         held = self._held.get(int(line))
         if not held:
             return
-        walls = held.walls if tuple(from_pose) != tuple(to_pose) else []
+        still = tuple(from_pose) == tuple(to_pose)
+        walls, paint = ([], []) if still else (held.walls, held.paint)
         for simulator in self._simulators:
-            simulator.move_solid(walls, held.bodies, from_pose, to_pose)
-        if walls:
+            simulator.move_solid(walls, held.bodies, from_pose, to_pose, paint)
+        if walls or paint:
             first = self._moves.get(int(line), (tuple(from_pose), tuple(from_pose)))[0]
             self._moves[int(line)] = (first, tuple(to_pose))  # type: ignore[assignment]
 
@@ -186,9 +192,9 @@ def carried_over(
         after.light_changes = before.light_changes
     for line, (start, now) in moves.items():
         held = after._held.get(line)
-        if held is not None and held.walls:
+        if held is not None and (held.walls or held.paint):
             for simulator in simulators:
-                simulator.move_solid(held.walls, [], start, now)
+                simulator.move_solid(held.walls, [], start, now, held.paint)
             after._moves[line] = (start, now)
     return after
 

@@ -58,6 +58,8 @@ class WallsNow:
         self._text: str | None = None
         self._base: WallBoxes | None = None
         self._floor: FloorPaint | None = None
+        #: What the walls were made from when the floor paint was (see :meth:`walls`).
+        self._floor_seen: Any = None
         #: What the walls were made from last: the world and the moves (a run of one robot),
         #: or the world's count of changes (a world run).
         self._seen: Any = None
@@ -109,11 +111,18 @@ class WallsNow:
         return self._base
 
     def floor(self) -> FloorPaint:
-        """The floor paint now."""
+        """The floor paint now: the floor marks of the nodes a supervisor moved where it put
+        them."""
         self.walls()
         assert self._world is not None
-        if self._floor is None:
-            self._floor = FloorPaint(self._world)
+        if self._floor is None or self._floor_seen != self._seen:
+            world = self._world
+            for line, (start, now) in world_objects(self._simulation).node_moves().items():
+                held = held_by_line(self._report).get(line)
+                if held is not None and held.paint:
+                    world = world.with_paint_moved(held.paint, start, now)
+            self._floor = FloorPaint(world)
+            self._floor_seen = self._seen
         return self._floor
 
 

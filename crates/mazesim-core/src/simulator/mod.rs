@@ -684,7 +684,17 @@ impl Simulator {
     pub(crate) fn take_world(&mut self, world: Arc<World>) {
         self.world = world;
         self.body.replace_walls(self.world.solid_walls());
+        self.read_floor_anew();
         self.update_contact();
+    }
+
+    /// New ground readers for the world's floor, which may be painted otherwise now: a reader
+    /// keeps the bare floor it last saw, which a moved or imported mark may cover.
+    fn read_floor_anew(&mut self) {
+        let floor = self.world.floor();
+        for (reader, channel) in self.ground_readers.iter_mut().zip(self.rig.ground.iter()) {
+            *reader = GroundReader::new(&channel.model, floor);
+        }
     }
 
     /// Takes `world`, the running world with nodes a supervisor imported or removed: its walls
@@ -695,6 +705,7 @@ impl Simulator {
         let walls = self.world.solid_walls();
         self.body.replace_walls(walls);
         self.body.replace_movables(walls, self.world.bodies(), kept);
+        self.read_floor_anew();
         self.update_contact();
     }
 

@@ -536,10 +536,18 @@ impl Swarm {
     }
 
     /// Moves an object of the world by `motion`, as a supervisor moves a node: the `[[walls]]`
-    /// entries `walls` (see `World::with_walls_moved`) and the movable bodies `bodies` (world
-    /// order; each put at rest where the motion takes its pose now). The robots meet the walls
-    /// and bodies there from the next step on. Nothing moves when any index or pose is refused.
-    pub fn move_solid(&mut self, walls: &[usize], bodies: &[usize], motion: Motion) -> Result<()> {
+    /// entries `walls` (see `World::with_walls_moved`), the movable bodies `bodies` (world
+    /// order; each put at rest where the motion takes its pose now) and the `[[paint]]` entries
+    /// `paint` (its floor marks, see `World::with_paint_moved`). The robots meet the walls and
+    /// bodies there from the next step on, and their ground sensors read the paint there.
+    /// Nothing moves when any index or pose is refused.
+    pub fn move_solid(
+        &mut self,
+        walls: &[usize],
+        bodies: &[usize],
+        paint: &[usize],
+        motion: Motion,
+    ) -> Result<()> {
         motion.check()?;
         let poses = self.robots[0].body_poses();
         let mut placed = Vec::with_capacity(bodies.len());
@@ -554,8 +562,14 @@ impl Swarm {
             limits::check_pose("movable body", x, y, yaw)?;
             placed.push((i, [x as f32, y as f32, yaw as f32]));
         }
-        if !walls.is_empty() {
-            let world = Arc::new(self.robots[0].world().with_walls_moved(walls, motion)?);
+        if !walls.is_empty() || !paint.is_empty() {
+            let mut world = self.robots[0].world().clone();
+            if !walls.is_empty() {
+                world = Arc::new(world.with_walls_moved(walls, motion)?);
+            }
+            if !paint.is_empty() {
+                world = Arc::new(world.with_paint_moved(paint, motion)?);
+            }
             for robot in &mut self.robots {
                 robot.take_world(world.clone());
             }

@@ -371,7 +371,7 @@ fn a_moved_wall_is_seen_and_met_where_it_is_now() {
         from: [0.5, 0.0, 0.0],
         to: [0.06, 0.0, 0.0],
     };
-    swarm.move_solid(&[0], &[], motion).unwrap();
+    swarm.move_solid(&[0], &[], &[], motion).unwrap();
     let near = front_reading(&mut swarm);
     assert!(near > far + 500.0, "front sensors {far} -> {near}");
     for _ in 0..40 {
@@ -383,6 +383,56 @@ fn a_moved_wall_is_seen_and_met_where_it_is_now() {
         "went through the moved wall to x {x}"
     );
     assert!(swarm.robots()[0].collisions() >= 1);
+}
+
+/// A world of one robot at (0, 0) and a dark mark 10 cm square at (0.5, 0).
+fn marked_world() -> Arc<World> {
+    let text = r#"format = "mazesim-world"
+version = 1
+[start]
+x = 0.0
+y = 0.0
+[[paint]]
+shape = "rect"
+center = [0.5, 0.0]
+size = [0.1, 0.1]
+reflectance = 0.1
+"#;
+    Arc::new(World::from_toml(text, "marked").unwrap())
+}
+
+fn ground_sum(swarm: &mut Swarm) -> f32 {
+    swarm.step(&[[0.0, 0.0]]).unwrap();
+    swarm.robots()[0].ground_sensors().iter().sum()
+}
+
+#[test]
+fn a_moved_floor_mark_is_read_where_it_is_now() {
+    let mut swarm = quiet(marked_world());
+    let bare = ground_sum(&mut swarm);
+    let bare_again = ground_sum(&mut swarm); // the readers now hold the bare floor around
+    assert_eq!(bare, bare_again);
+    let under = Motion {
+        from: [0.5, 0.0, 0.0],
+        to: [0.0, 0.0, 0.0],
+    };
+    swarm.move_solid(&[], &[], &[0], under).unwrap();
+    let dark = ground_sum(&mut swarm);
+    assert!(dark < bare * 0.5, "ground sensors {bare} -> {dark}");
+    let away = Motion {
+        from: under.to,
+        to: [0.0, 0.3, 0.0],
+    };
+    swarm.move_solid(&[], &[], &[0], away).unwrap();
+    assert_eq!(ground_sum(&mut swarm), bare);
+    // A reset puts the mark back where the world has it.
+    swarm.reset_scene();
+    assert_eq!(
+        swarm.robots()[0].world().floor().reflectance_at([0.5, 0.0]),
+        0.1
+    );
+    let error = swarm.move_solid(&[], &[], &[1], under).unwrap_err();
+    assert!(error.to_string().contains("found 1"), "{error}");
 }
 
 #[test]
@@ -398,7 +448,7 @@ fn moving_a_wall_away_clears_the_way() {
         from: [0.06, 0.1, 0.0],
         to: [0.06, 0.1, std::f64::consts::FRAC_PI_2],
     };
-    swarm.move_solid(&[0], &[], motion).unwrap();
+    swarm.move_solid(&[0], &[], &[], motion).unwrap();
     for _ in 0..40 {
         swarm.step(&[[6.0, 6.0]]).unwrap();
     }
@@ -414,7 +464,7 @@ fn a_moved_box_is_seen_and_pushed_from_where_it_was_put() {
         from: [0.0, 0.3, 0.0],
         to: [0.07, 0.0, 0.3],
     };
-    swarm.move_solid(&[], &[0], motion).unwrap();
+    swarm.move_solid(&[], &[0], &[], motion).unwrap();
     let [x, y, yaw] = swarm.robots()[0].body_poses()[0];
     assert!((x - 0.07).abs() < 1e-6 && y.abs() < 1e-6 && (yaw - 0.3).abs() < 1e-6);
     let seen = front_reading(&mut swarm);
@@ -426,7 +476,10 @@ fn a_moved_box_is_seen_and_pushed_from_where_it_was_put() {
         swarm.robots()[0].body_poses()[0][0] > 0.1,
         "the box was not pushed"
     );
-    let error = swarm.move_solid(&[], &[1], motion).unwrap_err().to_string();
+    let error = swarm
+        .move_solid(&[], &[1], &[], motion)
+        .unwrap_err()
+        .to_string();
     assert!(
         error.contains("below the world's 1 bodies, found 1"),
         "{error}"
@@ -444,12 +497,12 @@ fn the_same_moves_give_the_same_run() {
                     from: [0.3, 0.0, 0.0],
                     to: [0.12, 0.02, 0.4],
                 };
-                swarm.move_solid(&[0], &[], motion).unwrap();
+                swarm.move_solid(&[0], &[], &[], motion).unwrap();
                 let to_box = Motion {
                     from: [0.0, 0.3, 0.0],
                     to: [0.09, -0.01, 0.2],
                 };
-                swarm.move_solid(&[], &[0], to_box).unwrap();
+                swarm.move_solid(&[], &[0], &[], to_box).unwrap();
             }
             swarm.step(&[[5.0, 6.0]]).unwrap();
             let robot = &swarm.robots()[0];
@@ -471,7 +524,7 @@ fn moving_the_robot_leaves_a_pushed_box_where_it_is() {
         from: [0.0, 0.3, 0.0],
         to: [0.07, 0.0, 0.0],
     };
-    swarm.move_solid(&[], &[0], motion).unwrap();
+    swarm.move_solid(&[], &[0], &[], motion).unwrap();
     for _ in 0..30 {
         swarm.step(&[[6.0, 6.0]]).unwrap();
     }
@@ -490,12 +543,12 @@ fn resetting_the_scene_puts_robots_walls_and_bodies_back_and_time_goes_on() {
         from: [0.5, 0.0, 0.0],
         to: [0.3, 0.1, 0.5],
     };
-    swarm.move_solid(&[0], &[], wall).unwrap();
+    swarm.move_solid(&[0], &[], &[], wall).unwrap();
     let to_box = Motion {
         from: [0.0, 0.3, 0.0],
         to: [0.07, 0.0, 0.0],
     };
-    swarm.move_solid(&[], &[0], to_box).unwrap();
+    swarm.move_solid(&[], &[0], &[], to_box).unwrap();
     for _ in 0..30 {
         swarm.step(&[[6.0, 5.0]]).unwrap();
     }
@@ -665,7 +718,7 @@ fn a_reset_puts_moved_walls_back_too() {
         from: [0.5, 0.0, 0.0],
         to: [0.06, 0.0, 0.0],
     };
-    swarm.move_solid(&[0], &[], wall).unwrap();
+    swarm.move_solid(&[0], &[], &[], wall).unwrap();
     swarm.reset(None);
     assert_eq!(
         swarm.robots()[0].world().walls(),

@@ -344,6 +344,7 @@ impl<'d> Importer<'d> {
         };
         if valid {
             self.floor_marks.push(paint);
+            self.floor_mark_owners.push(self.owners());
         }
     }
 
@@ -368,7 +369,12 @@ impl<'d> Importer<'d> {
             return self.drop_visual(shape, geometry, &why);
         }
         match triangles_paint(triangles, reflectance, colour) {
-            Ok(paint) => self.floor_marks.extend(paint),
+            Ok(paint) => {
+                let owners = self.owners();
+                self.floor_mark_owners
+                    .extend(std::iter::repeat_n(owners, paint.len()));
+                self.floor_marks.extend(paint);
+            }
             Err(why) => self.drop_visual(shape, geometry, &why),
         }
     }
@@ -516,7 +522,12 @@ impl WbtImport {
                 continue;
             }
             match triangles_paint(&world, mesh.reflectance, mesh.colour) {
-                Ok(paint) => self.paint.extend(paint),
+                Ok(paint) => {
+                    // A mesh read after the walk: held by no node a supervisor moves.
+                    self.paint_owners
+                        .resize(self.paint.len() + paint.len(), Vec::new());
+                    self.paint.extend(paint);
+                }
                 Err(why) => self.warnings.push(format!(
                     "{owner}: mesh {}: {why}: not imported",
                     path.display()

@@ -351,6 +351,10 @@ impl WbtImport {
                 }
             }
         }
+        // The texture's paint is held by no node a supervisor moves.
+        let owners = std::mem::take(&mut self.paint_owners);
+        self.paint_owners = vec![Vec::new(); self.paint.len()];
+        self.paint_owners.extend(owners);
         self.paint.extend(marks);
     }
 

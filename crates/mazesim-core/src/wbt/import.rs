@@ -197,6 +197,8 @@ pub struct Importer<'d> {
     pub wall_textures: Vec<WallTexture>,
     /// Paint of the visual-only shapes lying on the floor (see `floor_marks.rs`).
     pub floor_marks: Vec<crate::world::spec::PaintSpec>,
+    /// Per floor mark, the lines of the nodes that hold it (a supervisor moves it with them).
+    pub floor_mark_owners: Vec<Vec<usize>>,
     /// Meshes of visual-only shapes, read after the walk.
     pub floor_meshes: Vec<FloorMesh>,
     /// Whether the nearest Solid around the walk has a `boundingObject` (its shapes are then
@@ -285,6 +287,7 @@ fn walk<'d>(
         floor_textures: Vec::new(),
         wall_textures: Vec::new(),
         floor_marks: Vec::new(),
+        floor_mark_owners: Vec::new(),
         floor_meshes: Vec::new(),
         bounded: false,
         warnings: doc.warnings.clone(),
@@ -366,6 +369,7 @@ fn finish((mut importer, basic_time_step_ms): (Importer<'_>, f64)) -> WbtImport 
         wall_textures: importer.wall_textures,
         floor_meshes: importer.floor_meshes,
         paint: importer.floor_marks,
+        paint_owners: importer.floor_mark_owners,
         basic_time_step_ms,
         warnings: importer.warnings,
         one_controller_warnings: importer.one_controller_warnings,
@@ -557,11 +561,17 @@ impl<'d> Importer<'d> {
         self.holders.pop();
     }
 
+    /// The lines of the nodes the walk is inside, each once: what holds what it emits now.
+    pub fn owners(&self) -> Vec<usize> {
+        let mut owners = self.holders.clone();
+        owners.dedup();
+        owners
+    }
+
     /// Records an obstacle, with the look of the Solid being read, held by the nodes the walk
     /// is inside.
     pub fn emit(&mut self, obstacle: Obstacle) {
-        let mut owners = self.holders.clone();
-        owners.dedup();
+        let owners = self.owners();
         if self.sensing {
             self.sensed_obstacles.push(obstacle);
             self.sensed_looks.push(self.look);

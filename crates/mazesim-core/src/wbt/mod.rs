@@ -207,6 +207,9 @@ pub struct WbtImport {
     /// Floor paint: the textures painted so far, then the marks of visual-only shapes lying
     /// on the floor.
     pub paint: Vec<crate::world::spec::PaintSpec>,
+    /// Per entry of `paint`, the lines of the nodes that hold it: a supervisor that moves one
+    /// of them moves the paint (none for a floor texture's or a mesh's paint).
+    pub paint_owners: Vec<Vec<usize>>,
     /// `WorldInfo.basicTimeStep` (Webots' default 32 ms when absent).
     pub basic_time_step_ms: f64,
     /// Everything not imported or approximated, one sentence each, with its line.
