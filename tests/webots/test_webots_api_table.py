@@ -215,3 +215,18 @@ def test_a_camera_fov_assigned_says_what_webots_says(
     camera.fov = 0.5  # Webots' property calls setFov: the e-puck's camera has no zoom
     assert camera.fov == before == camera.getFov()
     assert "can only be called on a zoom camera" in capsys.readouterr().err
+
+
+def test_a_read_only_property_a_controller_assigns_holds_its_own_value(robot: Any) -> None:
+    """A controller written for Webots before R2023b (no properties) keeps its own data in a
+    Robot subclass under names R2023b made read-only properties: ``self.name = ...``."""
+    assert robot.name == robot.getName() and robot.time == robot.getTime()
+    robot.name = "robot3"
+    robot.time = 0
+    assert (robot.name, robot.time) == ("robot3", 0)
+    assert robot.getName() != "robot3"  # Webots' own value is as it was
+    robot.step(32)
+    assert robot.time == 0 and robot.getTime() > 0
+    # A property with a setter still calls it.
+    robot.custom_data = "own"
+    assert robot.getCustomData() == "own"

@@ -14,7 +14,8 @@ import pytest
 
 from mazesim.webots import controller, import_wbt
 from mazesim.webots import simulation as simulations
-from supervised_world import WORLD, drive, front, run_test_world, supervisor_of
+from mazesim.webots.lockstep import run_world
+from supervised_world import WORLD, drive, front, project_of, run_test_world, supervisor_of
 
 pytestmark = pytest.mark.usefixtures("fresh_robot")
 
@@ -137,3 +138,25 @@ def test_a_robot_kept_as_an_obstacle_that_moves_itself_takes_its_obstacle_along(
     # Stopped by the slider's body until it slid away, then on past where it stood.
     assert pusher.xs[19] < -0.08 - 0.02 - 0.037 + 1e-3
     assert pusher.final_pose[0] > -0.08
+
+
+def test_a_world_without_an_e_puck_answers_a_supervisor_about_its_ball(tmp_path: Path) -> None:
+    """No simulator holds the movable bodies of a world whose robots are no e-pucks (they do
+    not move): a supervisor reading a ball's velocity reads it at rest, as Webots' API never
+    raises there, and its controller goes on (it stopped with an internal IndexError)."""
+    text = (
+        "#VRML_SIM R2023b utf8\nWorldInfo { basicTimeStep 32 }\nRectangleArena { }\n"
+        "DEF BALL Solid { translation 0.2 0 0.04 children [ DEF B Shape { geometry Sphere "
+        '{ radius 0.04 } } ] name "ball" boundingObject USE B physics Physics { mass 0.05 } }\n'
+        'Robot { name "referee" controller "referee" supervisor TRUE }\n'
+    )
+    out = tmp_path / "velocity.txt"
+    referee = (
+        "from controller import Supervisor\nrobot = Supervisor()\nrobot.step(32)\n"
+        f"open({str(out)!r}, 'w').write(repr(robot.getFromDef('BALL').getVelocity()))\n"
+        "robot.step(32)\n"
+    )
+    world = project_of(tmp_path, "ball.wbt", text, {"referee": referee})
+    run = run_world(str(world), seconds=0.2, seed=1)
+    assert [robot.exit_status for robot in run.robots] == [0], run.robots
+    assert out.read_text() == repr([0.0] * 6)

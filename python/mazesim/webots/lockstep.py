@@ -766,7 +766,7 @@ def run_world(
     own = _own_profiles(robots, scenes)
     placed = carrying(robots, scenes)
     shared, refusal = shared_simulator(world, placed, e_pucks, seed=seed, noise=noise, profiles=own)
-    if refusal:
+    if refusal and e_pucks:
         print(
             f"mazesim: warning: the e-pucks run in simulators of their own, without seeing or "
             f"touching each other: {refusal}",

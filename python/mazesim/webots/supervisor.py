@@ -377,16 +377,22 @@ class Node(NotSimulated):
         """Moves the robot, or the movable body the node follows, in the simulation, at rest
         (the pose it reads while it stays there is the one given: :meth:`_pose`)."""
         before = self._pose()
+        given = self._given_pose
         self._given_pose = (x, y, yaw)
         if self._on_body is not None:
             self._move_held(before, (x, y, yaw))
             return
         if self._held and not self._move_held(before, (x, y, yaw)):
             return  # a robot kept as an obstacle: refused where its obstacle cannot go
-        if self._fleet_index is not None:
-            self._simulation().fleet.move(self._fleet_index, x, y, yaw)
-            return
-        self._simulation().move_robot(x, y, yaw)
+        try:
+            if self._fleet_index is not None:
+                self._simulation().fleet.move(self._fleet_index, x, y, yaw)
+            else:
+                self._simulation().move_robot(x, y, yaw)
+        except MazesimError as refused:
+            # Webots' field setters never raise: the robot stays where it is, with an error.
+            self._given_pose = given
+            _print_error(f"Error: {self._label()} cannot be moved there: {refused}")
 
     def _string(self, name: str) -> str:
         """A string field's value: another robot's ``customData`` as the last write left it,
@@ -570,7 +576,10 @@ class Node(NotSimulated):
         """Linear and angular velocity [vx, vy, vz, wx, wy, wz] (m/s, rad/s, world frame)."""
         if self._on_body is not None:
             moving = world_objects(self._simulation()).body_velocities()
-            vx, vy, yaw_rate = moving[self._held.bodies[0]]
+            index = self._held.bodies[0]
+            if index >= len(moving):  # no simulator holds the world's bodies: none is moving
+                return [0.0] * 6
+            vx, vy, yaw_rate = moving[index]
         elif self._fleet_index is not None:
             vx, vy, yaw_rate = self._simulation().fleet.velocity(self._fleet_index)
         elif not self._robot:

@@ -91,14 +91,31 @@ def _named(cls: type) -> str:
     return str(vars(cls).get("_webots_name", cls.__name__))
 
 
-def webots_property(getter: str, setter: str = "") -> Any:
+def webots_property(getter: str, setter: str = "", name: str = "") -> Any:
     """The property style of a Webots method, as Webots' Python API pairs them: reading the
     property calls ``getter`` and, when ``setter`` is given, assigning it calls ``setter``
-    (without ``getter``, a property that is only assigned, as ``Motor.force``)."""
+    (without ``getter``, a property that is only assigned, as ``Motor.force``).
+
+    A property Webots reads only (``Robot.name``, ``Robot.time``) that a controller assigns
+    (``name`` given) holds what it was given from then on, for that object: Webots' Python API
+    before R2023b had no properties, and its controllers keep their own data in such names
+    (``self.name = self.getName()`` in a Robot subclass), which R2023b's read-only properties
+    would refuse."""
     read = (lambda self: getattr(self, getter)()) if getter else None
     write = (lambda self, value: getattr(self, setter)(value)) if setter else None
     said = [f"reading it calls :meth:`{getter}`"] if getter else []
     said += [f"assigning it calls :meth:`{setter}`"] if setter else []
+    if getter and not setter and name:
+        own = f"_assigned_{name}"
+
+        def read(self: Any) -> Any:
+            assigned = getattr(self, "__dict__", {})
+            return assigned[own] if own in assigned else getattr(self, getter)()
+
+        def write(self: Any, value: Any) -> None:
+            self.__dict__[own] = value
+
+        said.append("a controller's own value once it assigns one (as before R2023b)")
     return property(read, write, doc=f"Webots' property: {'; '.join(said)}.")
 
 
@@ -127,7 +144,7 @@ class NotSimulated:
             return
         for name, (getter, setter) in found.properties.items():
             if not hasattr(cls, name) and (getter or setter):
-                setattr(cls, name, webots_property(getter, setter))
+                setattr(cls, name, webots_property(getter, setter, name))
 
     if not TYPE_CHECKING:  # at run time only: mypy keeps checking mazesim's own names
 
