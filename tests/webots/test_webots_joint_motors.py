@@ -64,7 +64,11 @@ def test_a_robots_extra_motors_are_devices_that_turn_their_joints(
 ) -> None:
     robot = four_wheeled_robot()
     err = capsys.readouterr().err
-    assert "the RotationalMotor device 'wheel1' in the world drives a joint mazesim" in err
+    # Named with its robot: thirty robots of one model warn each of its own.
+    assert (
+        f"robot {robot.getName()!r}: the RotationalMotor device 'wheel1' in the world drives a "
+        "joint mazesim" in err
+    )
     wheels = [robot.getDevice(f"wheel{i}") for i in (1, 2, 3)]
     assert all(wheel is not None for wheel in wheels), "Webots finds them by their names"
     sensor = robot.getDevice("wheel1 sensor")

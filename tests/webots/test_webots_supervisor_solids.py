@@ -160,3 +160,31 @@ def test_a_world_without_an_e_puck_answers_a_supervisor_about_its_ball(tmp_path:
     run = run_world(str(world), seconds=0.2, seed=1)
     assert [robot.exit_status for robot in run.robots] == [0], run.robots
     assert out.read_text() == repr([0.0] * 6)
+
+
+def test_a_robot_mazesim_does_not_simulate_keeps_its_height(tmp_path: Path) -> None:
+    """A Robot that is no e-puck (its body does not move, as a Robot without physics in
+    Webots) stands at the height the file gives and a supervisor sets: its ``translation`` and
+    ``getPosition`` read it (they read 0); an e-puck's read 0, on the floor."""
+    text = (
+        "#VRML_SIM R2023b utf8\nWorldInfo { basicTimeStep 32 }\nRectangleArena { }\n"
+        'DEF BOT Robot { translation 0.5 0.2 0.3 name "bot" controller "<none>" }\n'
+        'DEF EP E-puck { translation -0.2 0 0 name "ep" controller "<none>" }\n'
+        'Robot { name "sup" controller "sup" supervisor TRUE }\n'
+    )
+    out = tmp_path / "heights.json"
+    sup = (
+        "import json\nfrom controller import Supervisor\nrobot = Supervisor()\nrobot.step(32)\n"
+        "bot, ep = robot.getFromDef('BOT'), robot.getFromDef('EP')\n"
+        "seen = [bot.getField('translation').getSFVec3f(), bot.getPosition(), ep.getPosition()]\n"
+        "bot.getField('translation').setSFVec3f([0.4, 0.1, 0.5])\nrobot.step(32)\n"
+        "seen += [bot.getField('translation').getSFVec3f(), bot.getPosition()]\n"
+        f"open({str(out)!r}, 'w').write(json.dumps(seen))\n"
+    )
+    world = project_of(tmp_path, "heights.wbt", text, {"sup": sup})
+    run = run_world(str(world), seconds=0.2, seed=1)
+    assert [robot.exit_status for robot in run.robots] == [0, 0, 0], run.robots
+    field, position, e_puck, moved_field, moved = json.loads(out.read_text())
+    assert field == position == pytest.approx([0.5, 0.2, 0.3])
+    assert e_puck == pytest.approx([-0.2, 0.0, 0.0], abs=1e-6)
+    assert moved_field == moved == pytest.approx([0.4, 0.1, 0.5])

@@ -255,9 +255,10 @@ class Field(NotSimulated):
         return _out(list(node._translation or ()))
 
     def setSFVec3f(self, values: list[float]) -> None:
-        """Moves the robot, or what the node holds, to [x, y, z] (z is ignored: everything stays
-        on the floor); another node's translation is recorded, and so is another field of three
-        numbers (a light's ``location``, a ``scale``): it reads back as set."""
+        """Moves the robot, or what the node holds, to [x, y, z] (z is ignored for an e-puck and
+        a movable body: they stay on the floor; a robot mazesim does not simulate keeps it);
+        another node's translation is recorded, and so is another field of three numbers (a
+        light's ``location``, a ``scale``): it reads back as set."""
         vector = field_value(values, 3, "Field.setSFVec3f")
         if self._name != "translation":
             self._set_numbers("set_sf_vec3f", (self.SF_VEC3F, self.SF_COLOR), vector)
@@ -266,6 +267,7 @@ class Field(NotSimulated):
         x, y, z = _in(vector)
         if node._live:
             node._set_field_pose(x, y, node._field_pose()[2])
+            node._set_field_height(z)
         else:
             node._place(translation=(x, y, z))
             node._tell_field("translation", [float(v) for v in vector])

@@ -78,7 +78,8 @@ class JointMotor(Motor):
         self._warned_clamp = False
         kind = "LinearMotor" if self.getType() == self.LINEAR else "RotationalMotor"
         print(
-            f"mazesim: warning: the {kind} device {_shown(name)} in the world drives a joint "
+            f"mazesim: warning: robot {_shown(simulation.robot_name)}: the {kind} device "
+            f"{_shown(name)} in the world drives a joint "
             "mazesim does not simulate: it takes every command and its joint turns freely, but it "
             "moves nothing",
             file=sys.stderr,

@@ -279,8 +279,31 @@ class Node(NotSimulated):
         return relative(self._parent_planar(), self._pose())
 
     def _field_height(self) -> float:
-        """A live node's translation z: a movable body's as the file gives it, 0 for a robot."""
-        return self._translation[2] if self._on_body and self._translation else 0.0
+        """A live node's translation z: a movable body's as the file gives it, a robot's that
+        mazesim does not simulate (no e-puck: its body does not move, as a Robot without
+        physics stays at its height in Webots) as the file gives it or a supervisor last set
+        it, 0 for an e-puck (on the floor)."""
+        if self._on_body or not self._simulated():
+            return self._translation[2] if self._translation else 0.0
+        return 0.0
+
+    def _simulated(self) -> bool:
+        """Whether the node is a robot whose body mazesim simulates (an e-puck of a world run,
+        or the run's own robot, for which a run of one controller simulates an e-puck)."""
+        simulation = self._simulation()
+        index = self._fleet_index
+        if index is None and self._robot and simulation.fleet is not None:
+            index = simulation.robot_index
+        if index is None:
+            return self._robot
+        robots = simulation.report.get("robots") or []
+        return index >= len(robots) or robots[index].get("profile") is not None
+
+    def _set_field_height(self, z: float) -> None:
+        """Keeps a supervisor's translation z of a robot mazesim does not simulate."""
+        if not self._on_body and not self._simulated() and self._translation is not None:
+            x, y, _ = self._translation
+            self._translation = (x, y, z)
 
     def _set_field_pose(self, x: float, y: float, yaw: float) -> None:
         """Moves a live node to the translation x, y and yaw given in its parent's frame."""
@@ -533,7 +556,9 @@ class Node(NotSimulated):
         through theirs; NaN for a node whose position the world file does not give)."""
         if self._live:
             x, y, _ = self._pose()
-            return _out([x, y, self._on_body[1] if self._on_body is not None else 0.0])
+            if self._on_body is not None:
+                return _out([x, y, self._on_body[1]])
+            return _out([x, y, 0.0 if self._simulated() else self._world_frame()[0][2]])
         if self._nested and self._translation is not None:
             return _out(self._world_frame()[0])
         return _out(list(self._translation)) if self._translation else [math.nan] * 3
