@@ -108,6 +108,7 @@ def samples(tmp: Path) -> dict[str, Any]:
         "index": 0,
         "walls": [],
         "bodies": [],
+        "paint": [],
         "from_pose": (x, y, yaw),
         "to_pose": (x, y, yaw),
         "seed": 0,

@@ -256,6 +256,7 @@ def test_cli_json_layout(tmp_path: Path) -> None:
         "floor_textures",
         "wall_textures",
         "floor_paint",
+        "floor_marks",
         "protos",
         "recognition",
     }
