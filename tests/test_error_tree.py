@@ -280,3 +280,15 @@ def test_an_abstract_class_made_as_it_is_names_what_to_define_and_is_still_a_typ
     assert isinstance(Own(CodeBook.default()), Decoder)  # a subclass of the user's is made
     decoder = Alg7Decoder(CodeBook.default())
     assert type(pickle.loads(pickle.dumps(decoder))) is Alg7Decoder
+
+
+def test_running_out_of_memory_is_said_so_not_blamed_on_the_arguments_kinds() -> None:
+    # Raised in a library's frame (the standard library's collections), as numpy's or a
+    # parser's allocation would.
+    code = compile("raise MemoryError()", collections.__file__ or "collections.py", "exec")
+    error = _raised(lambda: exec(code))
+    made = in_the_tree("load_world", error, True, "expected name_or_path: str; found 'x.wbt'")
+    assert isinstance(made, InternalError) and isinstance(made, MemoryError)
+    assert not isinstance(made, InvalidArgumentError)
+    assert str(made).startswith("load_world: ran out of memory (MemoryError): expected an input")
+    assert "arguments do not fit" not in str(made)

@@ -16,8 +16,9 @@ of integers (what a 64-bit integer holds). The length of a sized value (at most
 before the call, and so is a text argument (``str`` or ``bytes``) against its annotation, which
 ``float()`` and ``int()`` would read as a number (``Robot.step("64")``); the rest when the call
 fails with a built-in exception (``TypeError``, ``ValueError``, ``AttributeError``,
-``MemoryError``...), so that valid calls pay nothing for it and the function's own, more precise
-messages are kept: an argument that does not fit then raises
+``RecursionError``...; a ``MemoryError`` is no argument of the wrong kind, and is said to be
+the memory the input took), so that valid calls pay nothing for it and the function's own,
+more precise messages are kept: an argument that does not fit then raises
 :class:`~mazesim.errors.InvalidArgumentError` ("expected X, found Y") naming the function and the
 parameter, and so does a call with missing or unknown arguments. A failure whose arguments all fit
 their annotations (a bound the annotations cannot say, or a bug), and any other exception from
@@ -424,7 +425,6 @@ _ARGUMENT_FAILURES = (
     IndexError,
     KeyError,
     OverflowError,
-    MemoryError,
     RecursionError,
 )
 

@@ -158,6 +158,14 @@ def in_the_tree(
         return error
     if isinstance(error, OSError):
         return io_error(error, where)
+    if isinstance(error, MemoryError):
+        # Not an argument of the wrong kind, nor a fault to report: the input is too large for
+        # the memory the process has.
+        message = (
+            f"{where}: ran out of memory ({_quoted(error)}): expected an input that fits the "
+            "process's memory; give a smaller one, or run with more memory"
+        )
+        return made_as(InternalError, MemoryError, message)
     if argument_failure:
         message = f"{where}: the arguments do not fit: {_quoted(error)}"
         if given:

@@ -313,8 +313,10 @@ def read_text(
     path: str | os.PathLike[str],
     what: str,
     not_text: Callable[[str], MazesimError] = InvalidArgumentError,
+    most: int = MAX_TEXT_CHARACTERS,
 ) -> str:
-    """The text of a UTF-8 file a command reads, of at most :data:`MAX_TEXT_CHARACTERS`.
+    """The text of a UTF-8 file a command reads, of at most ``most`` characters
+    (:data:`MAX_TEXT_CHARACTERS` unless its kind is smaller).
 
     A byte-order mark at its start (Windows editors write one) is not part of the text, as the
     world and robot profile readers leave it out too; a file in another encoding (UTF-16, as
@@ -335,7 +337,7 @@ def read_text(
     file = os.fspath(path)
     try:
         with io.TextIOWrapper(open_input(file, what), encoding="utf-8-sig") as handle:
-            text = handle.read(MAX_TEXT_CHARACTERS + 1)
+            text = handle.read(most + 1)
     except UnicodeDecodeError as error:
         raise not_text(
             f"{file}: expected {what} in UTF-8 text, found {_other_encoding(error)}: save it as "
@@ -345,10 +347,8 @@ def read_text(
         raise
     except OSError as error:
         raise _read_failure(file, what, error.strerror or str(error), error.errno) from None
-    if len(text) > MAX_TEXT_CHARACTERS:
-        raise not_text(
-            f"{file}: expected {what} of at most {MAX_TEXT_CHARACTERS} characters, found more"
-        )
+    if len(text) > most:
+        raise not_text(f"{file}: expected {what} of at most {most} characters, found more")
     return text
 
 

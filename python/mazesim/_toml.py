@@ -26,6 +26,9 @@ MAX_TOML_NESTING = 32
 #: The characters the nesting scan stops at: brackets, braces, string quotes, comments, lines.
 _SPECIAL = re.compile(r"[\[\]{}\"'#\n]")
 
+#: A quoted part of a dotted key (its dots are the name's, not the key's).
+_QUOTED = re.compile(r'"(?:[^"\\]|\\.)*"|\'[^\']*\'')
+
 
 def _string_end(text: str, index: int) -> int:
     """Where the string starting at ``index`` (at its opening quote) ends, just past it."""
@@ -49,26 +52,38 @@ def _escaped(text: str, index: int) -> bool:
     return backslashes % 2 == 1
 
 
+def _key_parts(key: str) -> int:
+    """How many parts a dotted key has (its dots outside quoted parts, plus one)."""
+    return _QUOTED.sub("", key).count(".") + 1
+
+
 def _deepest_field(text: str) -> tuple[int, str] | None:
     """The line and key of the first value nested deeper than :data:`MAX_TOML_NESTING`, or None.
 
-    Strings and comments are skipped; table headers (``[a]``, ``[[a]]``) do not nest.
+    Strings and comments are skipped; a dotted key (``a.b.c = 1``, a header ``[a.b.c]``) nests
+    by its parts, as the tables it makes do.
     """
     depth, key = 0, ""
     index = 0
+    read_to = -1  # the end of the last top-level line whose key was read (each is read once)
     while True:
-        if depth == 0:
+        if depth == 0 and index > read_to:
             # At the top level: a line is a header, a key = value, a comment or blank.
             line_end = text.find("\n", index)
-            line_text = text[index : len(text) if line_end < 0 else line_end]
-            stripped = line_text.lstrip()
+            read_to = len(text) if line_end < 0 else line_end
+            stripped = text[index:read_to].lstrip()
             if stripped.startswith("["):
+                header = stripped.strip("[ \t").split("]", 1)[0]
+                if _key_parts(header) > MAX_TOML_NESTING:
+                    return text.count("\n", 0, index) + 1, header[:40]
                 if line_end < 0:
                     return None
                 index = line_end + 1
                 continue
             if "=" in stripped and not stripped.startswith("#"):
                 key = stripped.split("=", 1)[0].strip()
+                if _key_parts(key) > MAX_TOML_NESTING:
+                    return text.count("\n", 0, index) + 1, key[:40]
         found = _SPECIAL.search(text, index)
         if found is None:
             return None
@@ -115,7 +130,8 @@ def load_toml(text: str, source: str) -> dict[str, Any]:
         line, key = deepest
         raise InvalidArgumentError(
             f"{source}:{line}: field `{key}`: expected values nested at most "
-            f"{MAX_TOML_NESTING} deep (arrays and inline tables), found deeper"
+            f"{MAX_TOML_NESTING} deep (arrays, inline tables and the parts of a dotted key), "
+            "found deeper"
         )
     try:
         return tomllib.loads(text)

@@ -361,6 +361,22 @@ def test_key_codes_and_script_errors() -> None:
         KeyScript.parse("1 HYPER+A\n")
 
 
+def test_a_key_script_longer_than_its_bound_is_refused_before_it_is_read(
+    tmp_path: Path,
+) -> None:
+    from mazesim.webots.keyboard import MAX_KEY_SCRIPT_CHARACTERS, read_keys
+
+    script = tmp_path / "keys.txt"
+    line = "1 UP\n"
+    script.write_text(line * (MAX_KEY_SCRIPT_CHARACTERS // len(line)))
+    assert read_keys(script) is not None  # at the bound: read
+    script.write_text(line * (MAX_KEY_SCRIPT_CHARACTERS // len(line) + 1))
+    with pytest.raises(
+        InvalidArgumentError, match=f"at most {MAX_KEY_SCRIPT_CHARACTERS} characters, found more"
+    ):
+        read_keys(script)
+
+
 def test_keyboard_gives_each_held_key_once_per_step() -> None:
     prepare(mazesim.load_world("arena"), seconds=1.0, keys=KeyScript.parse("0 UP\n"))
     controller.Robot.created = None

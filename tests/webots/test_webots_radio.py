@@ -240,6 +240,30 @@ def test_an_unlimited_emitter_buffer_is_bounded_and_a_packet_beyond_it_refused()
     assert e_puck.send(b"y") == 1, "the bound is a step's, as a buffer empties"
 
 
+def test_an_unlimited_receiver_queue_is_bounded_and_a_packet_beyond_it_lost(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """A receiver of bufferSize -1 that listens and never reads keeps at most
+    MAX_UNLIMITED_QUEUE_BYTES (it took 3.5 GB before the run died): a packet past the bound is
+    lost, as one past a receiver's own bufferSize; reading makes room again."""
+    from mazesim.webots import radio_devices
+
+    monkeypatch.setattr(radio_devices, "MAX_UNLIMITED_QUEUE_BYTES", 10)
+    pair = RadioPair()
+    emitter = Emitter("emitter", pair.robots[0])
+    receiver = Receiver("receiver", pair.robots[1])
+    pair.receivers.append(receiver)
+    receiver.enable(int(pair.robots[1].basic_time_step_ms))
+    for word in ("abcd", "efgh", "ijkl"):
+        emitter.send(word)
+        pair.step()
+    assert receiver.getQueueLength() == 2, "the third packet would pass 10 bytes"
+    receiver.nextPacket()
+    emitter.send("mnop")
+    pair.step()
+    assert [receiver.getString(), receiver.getQueueLength()] == ["efgh", 2]
+
+
 def test_the_e_pucks_emitter_reaches_any_distance_as_its_protos_does() -> None:
     # The E-puck PROTO sets only its Emitter's channel, so the range is the node's default, -1:
     # an e-puck's packet reaches a supervisor 1.4 m away (a swarm scattered over a 5 m arena).

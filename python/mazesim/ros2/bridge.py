@@ -64,7 +64,7 @@ from mazesim.ros.resets import RESET_SIMULATION, RESETS, EpisodeResets, service_
 from mazesim.ros2 import cdr, network
 from mazesim.ros2.bag import BagRecorder
 from mazesim.ros2.clock import SIM_CONTROL_TOPIC, FreeRunning, stamp_nanoseconds
-from mazesim.ros2.node import Node, Reader
+from mazesim.ros2.node import MOST_NAME_CHARACTERS, Node, Reader
 from mazesim.ros2.nodes import leaves_signals_as_found
 from mazesim.ros2.occupancy import map_topics, occupancy_grid
 from mazesim.ros2.parameters import ParameterServers, bridge_parameters
@@ -81,6 +81,10 @@ NODE_NAME = "mazesim_bridge"
 READY_GRACE_S = 0.5
 #: Seconds between two looks at the readers other nodes created (see :mod:`.unpublished`).
 READERS_CHECK_S = 1.0
+#: The longest ``--namespace``: room left under ROS 2's bound on a name for the longest topic
+#: the bridge makes under it (``/camera/image_raw/compressed``, ``/odom``...).
+MOST_NAMESPACE_CHARACTERS = MOST_NAME_CHARACTERS - 64
+
 _ROS_NAMESPACE = re.compile(r"/?[A-Za-z_][A-Za-z0-9_]*(/[A-Za-z_][A-Za-z0-9_]*)*")
 #: Lockstep: seconds between the first state's transforms and motion and its sensor messages.
 MOTION_LEAD_S = 0.25
@@ -170,6 +174,12 @@ class BridgeSettings:
                 "expected a ROS namespace for --namespace (names of letters, digits and _, "
                 "not starting with a digit, joined by /: epuck0, /team/epuck0); found "
                 f"{_shown(self.namespace)}"
+            )
+        if len(self.namespace) > MOST_NAMESPACE_CHARACTERS:
+            raise InvalidArgumentError(
+                f"expected a ROS namespace for --namespace of at most "
+                f"{MOST_NAMESPACE_CHARACTERS} characters (the topics under it are ROS 2 names "
+                f"of at most {MOST_NAME_CHARACTERS}); found one of {len(self.namespace)}"
             )
 
 

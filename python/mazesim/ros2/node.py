@@ -14,7 +14,7 @@ import uuid
 from collections.abc import Callable
 from typing import Any
 
-from mazesim.errors import MazesimIOError
+from mazesim.errors import InvalidArgumentError, MazesimIOError, _shown
 from mazesim.ros2 import graph, messages, network, parameters, services
 from mazesim.ros2._deps import require_ros2
 from mazesim.ros2.qos import GRAPH, TopicQos, cyclone_qos
@@ -26,6 +26,26 @@ __all__ = ["Node", "Reader", "Writer", "dds_topic_name"]
 def dds_topic_name(topic: str) -> str:
     """The DDS topic of a ROS 2 topic: ``/ps0`` -> ``rt/ps0``."""
     return "rt/" + topic.lstrip("/")
+
+
+#: The longest name of a ROS 2 topic, node or namespace (ROS 2's rmw bound: 255 characters;
+#: the graph's discovery messages carry them in strings of that bound, and Cyclone DDS crashed
+#: on a DataWriter of a 100,000-character topic).
+MOST_NAME_CHARACTERS = 255
+
+
+def _checked_name(kind: str, name: str) -> str:
+    """``name`` if ROS 2 takes a ``kind`` (topic, node, namespace) of its length.
+
+    Raises:
+        InvalidArgumentError: It is longer than :data:`MOST_NAME_CHARACTERS`.
+    """
+    if len(name) > MOST_NAME_CHARACTERS:
+        raise InvalidArgumentError(
+            f"expected a ROS 2 {kind} name of at most {MOST_NAME_CHARACTERS} characters, found "
+            f"one of {len(name)}: {_shown(name)}"
+        )
+    return name
 
 
 def _joined(make: Callable[[], Any], what: str) -> Any:
@@ -152,8 +172,8 @@ class Node:
         from cyclonedds.topic import Topic
 
         self._topic_class = Topic
-        self.name = name
-        self.namespace = namespace
+        self.name = _checked_name("node", name)
+        self.namespace = _checked_name("namespace", namespace)
         self.ros_arguments = ros_arguments or RosArguments()
         self.distro = messages.check_distro(distro)
         self.discovery = discovery or network.discovery_from_environment()
@@ -183,6 +203,7 @@ class Node:
         # TwistStamped), and DDS matches each reader only with writers of its own type.
         key = (dds_name, msgtype)
         if key not in self._topics:
+            _checked_name("topic", dds_name.removeprefix("rt/"))
             self._topics[key] = _joined(
                 lambda: self._topic_class(
                     self.participant, dds_name, idl or messages.idl_type(self.distro, msgtype)

@@ -149,15 +149,22 @@ def _seconds(word: str, where: str, what: str) -> float:
     return value
 
 
+#: The longest key script (characters): some 100,000 lines of keys, where a script of 64 MiB
+#: took 3.7 GB and more than ten minutes to read.
+MAX_KEY_SCRIPT_CHARACTERS = 4 * 1024 * 1024
+
+
 def read_keys(path: str | os.PathLike[str]) -> KeyScript:
     """Reads a key script file.
 
     Raises:
         MazesimIOError: The file cannot be read.
-        InvalidArgumentError: A line is malformed.
+        InvalidArgumentError: A line is malformed, or the file is longer than
+            :data:`MAX_KEY_SCRIPT_CHARACTERS`.
     """
     file = os.fspath(path)
-    text = read_text(file, "the key script (lines of 'time_s key [duration_s]')")
+    what = "the key script (lines of 'time_s key [duration_s]')"
+    text = read_text(file, what, most=MAX_KEY_SCRIPT_CHARACTERS)
     return KeyScript.parse(text, file)
 
 

@@ -15,7 +15,8 @@ Semantics follow Webots' reference manual (https://cyberbotics.com/doc/reference
 https://cyberbotics.com/doc/reference/receiver): ``send`` returns 0 when the packets queued in
 the current step would exceed the emitter's ``bufferSize``; a receiver listens from ``enable``
 on and makes what arrived available at each end of its sampling period; a packet that would
-make the queue's bytes exceed the receiver's ``bufferSize`` is lost; reading an empty queue
+make the queue's bytes exceed the receiver's ``bufferSize`` (256 MiB for Webots' unlimited -1:
+:data:`MAX_UNLIMITED_QUEUE_BYTES`) is lost; reading an empty queue
 prints Webots' error. A receiver hears only emitters of its own ``type``.
 """
 
@@ -64,6 +65,11 @@ Y_UP_AXES: Axes = ENU_TO_NUE
 #: "unlimited" buffer, bounded here so that one ``send`` cannot take the machine's memory (every
 #: receiver in range keeps its own copy of a packet).
 MAX_UNLIMITED_BUFFER_BYTES = 16 * 1024 * 1024
+
+#: The most bytes a receiver queues when its node's ``bufferSize`` is -1: Webots' "unlimited"
+#: queue, bounded here so that a robot that listens and never reads cannot take the machine's
+#: memory (a packet that would pass it is lost, as one past a receiver's own ``bufferSize``).
+MAX_UNLIMITED_QUEUE_BYTES = 256 * 1024 * 1024
 
 
 def _packet_bytes(message: Any, length: int | None, most: int) -> bytes:
@@ -304,9 +310,11 @@ class Receiver(_Tuned, _Sensor):
         overflow the buffer."""
         simulation = self._simulation
         queue = self._queued()
+        unlimited = self._buffer_size == UNLIMITED
+        most = MAX_UNLIMITED_QUEUE_BYTES if unlimited else self._buffer_size
         for packet in simulation.radio.collect(simulation.robot_index, self._name):
             size = len(packet.data)
-            if self._buffer_size != UNLIMITED and self._queued_bytes + size > self._buffer_size:
+            if self._queued_bytes + size > most:
                 continue
             queue.append(packet)
             self._queued_bytes += size
