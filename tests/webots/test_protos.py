@@ -825,3 +825,38 @@ def test_a_texture_image_larger_than_mazesim_reads_is_a_warning(tmp_path: Path) 
     said = [w for w in report["warnings"] if "huge.png" in w]
     assert len(said) == 1 and "8200 x 8200 pixels, more than the" in said[0], said
     assert report["floor_paint"] == 0
+
+
+def test_a_world_s_expansions_are_bounded_in_characters(
+    monkeypatch: pytest.MonkeyPatch, tmp_path: Path
+) -> None:
+    """300 instances of a PROTO of 0.9 MB ran for more than ten minutes: the expansions of one
+    world make at most MAX_EXPANDED_TEXT characters, the rest left out with one warning; the
+    ones within keep their own field values (a body's links are read once, for every
+    instance)."""
+    from mazesim.webots.proto import expander
+
+    (tmp_path / "protos").mkdir()
+    (tmp_path / "protos" / "Pillar.proto").write_text(
+        "#VRML_SIM R2023b utf8\nPROTO Pillar [ field SFVec3f translation 0 0 0 ] {\n"
+        "  Solid { translation IS translation children [ DEF S Shape { geometry Box "
+        "{ size 0.05 0.05 0.1 } } ] boundingObject USE S }\n}\n"
+    )
+    pillars = "".join(f"Pillar {{ translation {0.1 * i:.1f} 0.3 0.05 }}\n" for i in range(6))
+    world = tmp_path / "pillars.wbt"
+    world.write_text(
+        '#VRML_SIM R2023b utf8\nEXTERNPROTO "../protos/Pillar.proto"\n'
+        "WorldInfo { basicTimeStep 32 }\n" + pillars
+    )
+    (tmp_path / "worlds").mkdir()
+    world = world.rename(tmp_path / "worlds" / "pillars.wbt")
+    _, report = import_wbt(world)
+    assert sorted(round(o["center"][0], 3) for o in report["obstacles"]) == [
+        0.0, 0.1, 0.2, 0.3, 0.4, 0.5,
+    ]  # fmt: skip
+    monkeypatch.setattr(expander, "MAX_EXPANDED_TEXT", 400)
+    _, report = import_wbt(world)
+    kept = len(report["obstacles"])
+    assert 0 < kept < 6, report["obstacles"]
+    said = [w for w in report["warnings"] if "expand to more than 400 characters" in w]
+    assert len(said) == 1, report["warnings"]

@@ -59,6 +59,10 @@ _HIDDEN_LINE = re.compile(r"^[ \t]*hidden[ \t][^\n]*$", re.MULTILINE)
 MAX_NESTING = 24
 #: Most instances expanded in one world.
 MAX_INSTANCES = 20_000
+#: Most characters of node text the expansions of one world make (300 instances of a PROTO of
+#: 0.9 MB made 270 MB and ran for more than ten minutes; reading an expansion takes about a
+#: second a megabyte), far beyond a real world's.
+MAX_EXPANDED_TEXT = 32 * 1024 * 1024
 #: Most templates run in one world: instances of a procedural PROTO with the same fields share
 #: one run; each run is a process of its own (a few milliseconds), so a PROTO that instantiates
 #: itself with fields that differ each time would otherwise take minutes.
@@ -107,6 +111,10 @@ class Expander:
         self.report = ExpansionReport()
         self._definitions: dict[tuple[str, str], ProtoDefinition | None] = {}
         self._instances = 0
+        #: The ``IS`` links of each PROTO body read so far, by (origin, body text).
+        self._references: dict[tuple[str, str], list[_Reference]] = {}
+        #: The characters of node text the expansions made so far (:data:`MAX_EXPANDED_TEXT`).
+        self._expanded = 0
         self._said: set[str] = set()
         #: The text each template made, by PROTO and fields.
         self._made: dict[tuple[str, str, str], str] = {}
@@ -153,8 +161,8 @@ class Expander:
             self.report.warnings.append(message)
 
     def _expand(self, text: str, scope: _Scope, depth: int, keep_lines: bool = False) -> str:
-        if "{" not in text:
-            return text
+        if "{" not in text or not any(map(self._expandable, set(_NODE_TYPE.findall(text)))):
+            return text  # no node of a PROTO type: nothing to parse (a mesh of 0.9 MB took 1 s)
         try:
             nodes = parse_nodes(text, scope.base)
         except WorldFormatError:
@@ -164,9 +172,10 @@ class Expander:
         replacements: list[tuple[int, int, str]] = []
 
         def walk(node: Node) -> None:
-            if node.use_name is None and self._expandable(node.type_name):
+            expandable = node.use_name is None and self._expandable(node.type_name)
+            if expandable and self._expanded <= MAX_EXPANDED_TEXT:
                 expansion = self._instance(text, node, scope, depth, keep_lines)
-                if expansion is not None:
+                if expansion is not None and self._within_bound(expansion):
                     replacements.append((node.start, node.end, expansion))
                     return
             for item in node.fields:
@@ -177,13 +186,31 @@ class Expander:
 
         for node in nodes:
             walk(node)
-        for start, end, expansion in sorted(replacements, reverse=True):
+        # The text with each instance's node replaced by its expansion, joined once (rebuilding
+        # the whole text at each replacement took time of the square of its length).
+        pieces, done = [], 0
+        for start, end, expansion in sorted(replacements):
             original = text[start:end]
             if keep_lines:
                 breaks = line_of(original, len(original)) - 1
                 expansion = expansion + "\n" * breaks
-            text = text[:start] + expansion + text[end:]
-        return text
+            pieces += [text[done:start], expansion]
+            done = end
+        return "".join([*pieces, text[done:]])
+
+    def _within_bound(self, expansion: str) -> bool:
+        """Counts ``expansion``'s characters; False, said once, past :data:`MAX_EXPANDED_TEXT`
+        (the instance is then left as it is, as one past :data:`MAX_INSTANCES`)."""
+        before = self._expanded
+        self._expanded += len(expansion)
+        if self._expanded <= MAX_EXPANDED_TEXT:
+            return True
+        if before <= MAX_EXPANDED_TEXT:
+            self._say(
+                f"the world's PROTO instances expand to more than {MAX_EXPANDED_TEXT} characters "
+                "of nodes; the rest are not expanded"
+            )
+        return False
 
     @staticmethod
     def _expandable(type_name: str) -> bool:
@@ -353,30 +380,47 @@ class Expander:
         naming a field the PROTO does not declare is left unlinked, as Webots leaves it
         (``WbNode::createProtoInstance`` finds no parameter to copy): the field is dropped and
         keeps its node's default, with a warning."""
-        nodes = parse_nodes(body, definition.origin)
-        replacements: list[tuple[int, int, str]] = []
+        key = (definition.origin, body)
+        references = self._references.get(key)
+        if references is None:
+            references = self._references[key] = _references(body, definition.origin)
+        pieces, done = [], 0
+        for (start, value_start, end), target, linked, node_type in references:
+            if target not in values:
+                self._say(
+                    f"{definition.origin}: `{linked} IS {target}`: {definition.name} has no "
+                    f"field `{target}`; left unlinked, as in Webots: {node_type}'s `{linked}` "
+                    "keeps its default"
+                )
+                pieces += [body[done:start]]
+            else:
+                pieces += [body[done:value_start], values[target]]
+            done = end
+        return "".join([*pieces, body[done:]])
 
-        def walk(node: Node) -> None:
-            for item in node.fields:
-                target = item.is_reference
-                if target is not None:
-                    if target not in values:
-                        self._say(
-                            f"{definition.origin}: `{item.name} IS {target}`: {definition.name} "
-                            f"has no field `{target}`; left unlinked, as in Webots: "
-                            f"{node.type_name}'s `{item.name}` keeps its default"
-                        )
-                        replacements.append((item.start, item.value_end, ""))
-                        continue
-                    replacements.append((item.value_start, item.value_end, values[target]))
-                for child in item.nodes:
-                    walk(child)
 
-        for node in nodes:
-            walk(node)
-        for start, end, value in sorted(replacements, reverse=True):
-            body = body[:start] + value + body[end:]
-        return body
+#: Where a PROTO body links a field (``field IS name``): the field's start, its value's start and
+#: its value's end, the name linked, the field and its node's type.
+_Reference = tuple[tuple[int, int, int], str, str, str]
+
+
+def _references(body: str, origin: str) -> list[_Reference]:
+    """The ``IS`` links of a PROTO body, in text order (read once per body: a body of 0.9 MB
+    took a second to read for each instance)."""
+    found: list[_Reference] = []
+
+    def walk(node: Node) -> None:
+        for item in node.fields:
+            target = item.is_reference
+            if target is not None:
+                place = (item.start, item.value_start, item.value_end)
+                found.append((place, target, item.name, node.type_name))
+            for child in item.nodes:
+                walk(child)
+
+    for node in parse_nodes(body, origin):
+        walk(node)
+    return sorted(found)
 
 
 def _with_def(flat: str, def_name: str) -> str:
