@@ -20,7 +20,7 @@ from typing import TYPE_CHECKING, Any
 
 from mazesim.webots.line_of_sight import moved_walls
 from mazesim.webots.rays import FloorPaint, WallBoxes
-from mazesim.webots.solids import held_by_line, world_objects
+from mazesim.webots.solids import Held, held_by_line, world_objects
 
 if TYPE_CHECKING:
     from mazesim._core import World
@@ -28,6 +28,9 @@ if TYPE_CHECKING:
     from mazesim.webots.simulation import RobotSimulation
 
 __all__ = ["WallsNow", "WorldWalls", "walls_seen"]
+
+#: What a node that holds nothing holds.
+_NONE = Held()
 
 
 def walls_seen(simulation: RobotSimulation | WorldWalls) -> Any:
@@ -58,8 +61,10 @@ class WallsNow:
         self._text: str | None = None
         self._base: WallBoxes | None = None
         self._floor: FloorPaint | None = None
-        #: What the walls were made from when the floor paint was (see :meth:`walls`).
+        #: The world and the moves of paint-holding nodes the floor paint was made from, and
+        #: what the walls were made from then (:attr:`_seen`).
         self._floor_seen: Any = None
+        self._floor_walls: Any = None
         #: What the walls were made from last: the world and the moves (a run of one robot),
         #: or the world's count of changes (a world run).
         self._seen: Any = None
@@ -115,14 +120,23 @@ class WallsNow:
         them."""
         self.walls()
         assert self._world is not None
-        if self._floor is None or self._floor_seen != self._seen:
+        if self._floor is not None and self._floor_walls == self._seen:
+            return self._floor  # nothing moved since
+        self._floor_walls = self._seen
+        held = held_by_line(self._report)
+        moves = world_objects(self._simulation).node_moves()
+        # Only the moves of nodes holding paint change the floor (a supervisor that moves a box
+        # at every step leaves a textured floor's paint as it was read).
+        painted = sorted(
+            (line, move) for line, move in moves.items() if held.get(line, _NONE).paint
+        )
+        seen = (id(self._world), painted)
+        if self._floor is None or self._floor_seen != seen:
             world = self._world
-            for line, (start, now) in world_objects(self._simulation).node_moves().items():
-                held = held_by_line(self._report).get(line)
-                if held is not None and held.paint:
-                    world = world.with_paint_moved(held.paint, start, now)
+            for line, (start, now) in painted:
+                world = world.with_paint_moved(held[line].paint, start, now)
             self._floor = FloorPaint(world)
-            self._floor_seen = self._seen
+            self._floor_seen = seen
         return self._floor
 
 
