@@ -292,3 +292,21 @@ def test_running_out_of_memory_is_said_so_not_blamed_on_the_arguments_kinds() ->
     assert not isinstance(made, InvalidArgumentError)
     assert str(made).startswith("load_world: ran out of memory (MemoryError): expected an input")
     assert "arguments do not fit" not in str(made)
+
+
+def test_a_public_function_out_of_memory_says_so_without_checking_its_arguments_again(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    from mazesim import _checks
+    from mazesim.learn.discretise import encode_state
+
+    def no_check(*_: object) -> None:
+        raise AssertionError("the arguments were checked again after a MemoryError")
+
+    code = compile("raise MemoryError()", collections.__file__ or "collections.py", "exec")
+    monkeypatch.setattr(_checks._Parameters, "check", no_check)
+    monkeypatch.setattr("mazesim.learn.discretise.np.asarray", lambda *_, **__: exec(code))
+    with pytest.raises(MemoryError) as caught:
+        encode_state([0] * 6)
+    assert isinstance(caught.value, InternalError)
+    assert "encode_state: ran out of memory" in str(caught.value)

@@ -800,8 +800,10 @@ def checked(func: Callable[..., Any], *, method: bool = False) -> Callable[..., 
         except Exception as failure:
             # Any other failure (a library's own exception, ZeroDivisionError, a RuntimeError
             # from a value's method): an argument its annotation does not take is the cause.
+            # Out of memory, a check of the arguments would run out again: not made.
             try:
-                parameters.check(args, kwargs)
+                if not isinstance(failure, MemoryError):
+                    parameters.check(args, kwargs)
             except error as refusal:
                 raise refusal.with_traceback(None) from None
             instead = tree(func.__qualname__, failure, False)
