@@ -36,8 +36,9 @@ environment) and read its standard output.
                                        of scan and of odom, in that order; answers each scan with a
                                        twist once an odom has come, N times; the stamps of every
                                        scan received and of those answered
-    ros_probe.py publisher-after N SECONDS
-                                       subscribe odom, make the cmd_vel publisher SECONDS later (a
+    ros_probe.py publisher-after N SECONDS [connected]
+                                       subscribe odom, make the cmd_vel publisher SECONDS later
+                                       (after the subscription connected, with ``connected``; a
                                        node loading something between the two), answer each odom
                                        with a twist once it exists, N times; the stamps of every
                                        odom received and of those answered
@@ -439,10 +440,11 @@ def scan_with_odom(count: int) -> dict[str, Any]:
     return {"scans": scans, "answered": answered}
 
 
-def publisher_after(count: int, delay_s: float) -> dict[str, Any]:
-    """Subscribes ``odom``, makes its ``cmd_vel`` publisher ``delay_s`` later and answers each
-    odometry with a twist once it has one, ``count`` times; returns the stamps of every odometry
-    received and of those answered."""
+def publisher_after(count: int, delay_s: float, connected: bool = False) -> dict[str, Any]:
+    """Subscribes ``odom``, makes its ``cmd_vel`` publisher ``delay_s`` later (after the
+    subscription has connected, with ``connected``) and answers each odometry with a twist once
+    it has one, ``count`` times; returns the stamps of every odometry received and of those
+    answered."""
     seen = threading.Condition()
     made: list[Any] = []
     odometry: list[float] = []
@@ -456,7 +458,9 @@ def publisher_after(count: int, delay_s: float) -> dict[str, Any]:
                 answered.append(message.header.stamp.to_sec())
             seen.notify_all()
 
-    rospy.Subscriber("odom", Odometry, on_odom, tcp_nodelay=True)
+    subscription = rospy.Subscriber("odom", Odometry, on_odom, tcp_nodelay=True)
+    while connected and not subscription.get_num_connections():
+        time.sleep(0.001)
     time.sleep(delay_s)
     cmd_vel = publisher("cmd_vel", Twist)
     with seen:
@@ -504,7 +508,8 @@ def main() -> int:
         elif mode == "scan-with-odom":
             result = scan_with_odom(int(sys.argv[2]))
         elif mode == "publisher-after":
-            result = publisher_after(int(sys.argv[2]), float(sys.argv[3]))
+            connected = sys.argv[4:5] == ["connected"]
+            result = publisher_after(int(sys.argv[2]), float(sys.argv[3]), connected)
         elif mode == "listen":
             recorder = Recorder(STATE_TOPICS)
             time.sleep(float(sys.argv[2]))

@@ -73,6 +73,18 @@ def run_probe(master: LocalMaster, *args: str, namespace: str = "") -> dict[str,
     return dict(json.loads(result.stdout.strip().splitlines()[-1]))
 
 
+def start_probe(env: dict[str, str], *args: str) -> subprocess.Popen[str]:
+    """Starts ``ros_probe.py ARGS`` with ``env`` (a master's) and returns it running, its output
+    piped as text (read it with ``communicate``)."""
+    return subprocess.Popen(
+        [sys.executable, str(PROBE), *args],
+        env=env,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+
+
 def spawn_bridge(master: LocalMaster, *options: str) -> subprocess.Popen[bytes]:
     return master.spawn("bridge", [*MAZESIM, "ros", "bridge", *options])
 

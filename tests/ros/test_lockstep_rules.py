@@ -322,6 +322,37 @@ def test_a_connection_that_had_the_state_before_its_listener_heard_of_it_is_not_
     assert scan.written == ["scan@2"]
 
 
+def test_the_reset_state_is_kept_off_the_wire_and_handed_to_a_connection_made_before_it() -> None:
+    from mazesim.ros.latched import LateConnections, Remembered
+
+    # A node subscribed odom before the bridge started: it connected as the bridge advertised,
+    # before the reset state went out. Sent on the wire, it reached the node before its command
+    # publisher existed (skipped, then 5 s waiting for the state sent again).
+    class Made:
+        resolved_name = "/odom"
+
+        def __init__(self) -> None:
+            self.wire: list[str] = []
+
+        def publish(self, message: str) -> None:
+            self.wire.append(message)
+
+    late = LateConnections(quiet_s=0.5, lead_s=0.25, writer_wait_s=2.0)
+    noted: list[tuple[Any, bool]] = []
+    made = Made()
+    odom = Remembered(made, lambda sent, on_the_wire=True: noted.append((sent, on_the_wire)), late)
+    early = _Connection()
+    late.peer_subscribe("/odom", None, _sending_to(early))
+    late.hold_the_reset_state(lambda: odom.publish("odom@0"))
+    assert made.wire == [] and noted == [((made, "odom@0"), False)] and late.pending
+    connected = late._last_connected
+    assert late.hand_over([("/odom", "odom@0")], set(), False, now=connected + 1.0) == 0
+    assert late.hand_over([("/odom", "odom@0")], set(), True, now=connected + 1.1) == 1
+    assert early.written == ["odom@0"]
+    odom.publish("odom@1")  # the steps go on the wire
+    assert made.wire == ["odom@1"] and not late.holding
+
+
 @needs_ros
 def test_the_connection_is_read_from_rospys_own_publisher() -> None:
     # The mechanism relies on rospy's publisher handing its listener a closure over the

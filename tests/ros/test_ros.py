@@ -41,12 +41,12 @@ from mazesim.ros.local_master import LocalMaster
 from mazesim.ros.perform_learning import control_step_value
 from ros_support import (
     MAZESIM,
-    PROBE,
     needs_ros,
     processes_with,
     run_probe,
     spawn_bridge,
     spawn_launch,
+    start_probe,
     stop_launch,
     wait_for_subscriber,
 )
@@ -678,13 +678,7 @@ def test_recorded_run_plays_back_and_equals_in_process_run(
     player = LocalMaster(home=str(tmp_path / "play"))
     player.start()
     try:
-        probe = subprocess.Popen(
-            [sys.executable, str(PROBE), "count", "pose", str(steps + 1)],
-            env=player.env,
-            stdout=subprocess.PIPE,
-            stderr=subprocess.PIPE,
-            text=True,
-        )
+        probe = start_probe(player.env, "count", "pose", str(steps + 1))
         try:
             wait_for_subscriber(player, "/pose")
             play = subprocess.run(
@@ -787,6 +781,32 @@ def test_a_node_making_its_publisher_after_its_subscription_gets_the_state_once_
 
 
 @needs_ros
+def test_a_node_started_before_the_bridge_gets_the_reset_state_once_it_has_a_publisher(
+    master: LocalMaster,
+) -> None:
+    # The node subscribed odom before the bridge started: it connected as the bridge advertised
+    # its publishers, and the reset state published on the wire reached it before its cmd_vel
+    # publisher existed (skipped, then 5 s waiting for the state sent again). The reset state
+    # is handed over as to any late connection (the node makes its publisher a second after
+    # its subscription connected).
+    probe = start_probe(master.env, "publisher-after", "6", "1.0", "connected")
+    try:
+        wait_for_subscriber(master, "/odom")
+        spawn_bridge(master, "--seed", "1", "--duration", str(6 * 0.032))
+        out, err = probe.communicate(timeout=600)
+    except BaseException:
+        probe.kill()
+        probe.communicate()
+        raise
+    assert probe.returncode == 0, out + err
+    seen = json.loads(out.strip().splitlines()[-1])
+    log = Path(master.log_path("bridge")).read_text()
+    assert seen["odometry"][:6] == seen["answered"], (seen, log)  # the reset state once
+    assert seen["answered"] == pytest.approx([1e-9] + [step * 0.032 for step in range(1, 6)])
+    assert "publishing the reset state again" not in log
+
+
+@needs_ros
 @pytest.mark.parametrize("delay_s", [0.0, 4.0])
 def test_a_late_subscription_gets_the_state_once_in_the_order_it_went_out(
     master: LocalMaster, delay_s: float
@@ -799,13 +819,7 @@ def test_a_late_subscription_gets_the_state_once_in_the_order_it_went_out(
     # bridge's start and not from the hand-over (the recorder had it twice, or the node answered
     # it twice and ran a step behind).
     spawn_bridge(master, "--seed", "3", "--duration", str(10 * 0.032))
-    recorder = subprocess.Popen(
-        [sys.executable, str(PROBE), "count", "pose", "11"],
-        env=master.env,
-        stdout=subprocess.PIPE,
-        stderr=subprocess.PIPE,
-        text=True,
-    )
+    recorder = start_probe(master.env, "count", "pose", "11")
     try:
         wait_for_subscriber(master, "/pose")
         time.sleep(delay_s)
@@ -844,12 +858,7 @@ def test_the_bridge_reads_each_node_s_topics_from_the_master(
     # The late hand-over waits for every subscription the master lists for a node.
     from mazesim.ros._ros import require_ros, topics_of_nodes
 
-    recorder = subprocess.Popen(
-        [sys.executable, str(PROBE), "count", "pose", "1"],
-        env=master.env,
-        stdout=subprocess.DEVNULL,
-        stderr=subprocess.DEVNULL,
-    )
+    recorder = start_probe(master.env, "count", "pose", "1")
     try:
         wait_for_subscriber(master, "/pose")
         monkeypatch.setenv("ROS_MASTER_URI", master.uri)

@@ -296,7 +296,8 @@ class Bridge:
             ]
             if made is not None
         }
-        self.publish_state()
+        # Handed over to every connection, one made as the publishers were advertised too.
+        self.late.hold_the_reset_state(self.publish_state)
         self.unanswered.went_out(time.monotonic())
         # No queue limit: in lockstep every command is one step and none may be dropped.
         self.command_subscribers = [

@@ -44,6 +44,12 @@ subscriptions had, the state went out, the node's answer was lost and it waited 
 state sent again; so while the master lists a node waiting as a publisher of a command topic
 that the bridge is not connected to yet, the state waits for it, up to :data:`WRITER_COMING_S`.
 
+The reset state goes out by the same rule, never on the wire
+(:meth:`LateConnections.hold_the_reset_state`): a node subscribed before the bridge started
+connects as the bridge advertises its publishers, one by one, and the reset state published
+right after reached it before its command publisher existed (skipped, then 5 s waiting for the
+state sent again).
+
 Each hand-over is told in a line (``note``; the bridge logs it): whose connections got the state,
 how long after the last one connected, what the master listed of those nodes' command topics and
 which command writers the bridge was connected to. A master that does not answer holds the state
@@ -155,6 +161,22 @@ class LateConnections:
         self._sensing_at = float("inf")
         #: Connections handed the state so far.
         self.handed = 0
+        #: While set, the state publishers keep what they publish off the wire (the reset
+        #: state): every connection, one made as the bridge advertised too, gets it by the
+        #: hand-over's rule (:meth:`hold_the_reset_state`).
+        self.holding = False
+
+    def hold_the_reset_state(self, publish: Callable[[], None]) -> None:
+        """Runs ``publish`` (the bridge publishing its reset state) with the state publishers
+        keeping their messages off the wire: the state is kept as the last state and every
+        connection gets it from :meth:`hand_over`. A node subscribed before the bridge started
+        connected as the bridge advertised, had the reset state before its command publisher
+        existed, skipped it and waited for the state sent again."""
+        self.holding = True
+        try:
+            publish()
+        finally:
+            self.holding = False
 
     def peer_subscribe(self, topic: str, publish_all: Any, publish_one: Any) -> None:
         """rospy: a subscription of ``topic`` connected; ``publish_one`` sends to it alone."""
@@ -292,11 +314,15 @@ class Remembered:
     """A publisher that hands each message it publishes to ``note`` (the bridge keeps the last
     state as it went out, to send it again, and tells :class:`LateConnections` the topic went
     out); everything else is the publisher's. ``/tf`` at the stamp it last went out with is
-    noted and kept off the wire (``on_the_wire=False``)."""
+    noted and kept off the wire (``on_the_wire=False``), and so is everything published while
+    ``late`` holds the reset state (:meth:`LateConnections.hold_the_reset_state`)."""
 
-    def __init__(self, made: Any, note: Callable[..., None]) -> None:
+    def __init__(
+        self, made: Any, note: Callable[..., None], late: LateConnections | None = None
+    ) -> None:
         self.made = made
         self._note = note
+        self._late = late
         #: ``/tf``: the stamp its transforms last went out with.
         self._tf_stamp: Any = None
 
@@ -309,6 +335,9 @@ class Remembered:
                 self._note((self.made, message), on_the_wire=False)
                 return
             self._tf_stamp = stamp
+        if self._late is not None and self._late.holding:
+            self._note((self.made, message), on_the_wire=False)
+            return
         self.made.publish(message)
         self._note((self.made, message))
 
@@ -336,4 +365,4 @@ def state_publisher(
         latch=True,
         late=late if lockstep else None,
     )
-    return Remembered(made, note)
+    return Remembered(made, note, late if lockstep else None)

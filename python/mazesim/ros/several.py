@@ -220,7 +220,8 @@ class SeveralRobotsBridge:
         self.tf_static_publisher.publish(ros.TFMessage(transforms=static))
         self.map_publisher = standard.latched_map(ros, simulator.world)
         self.sensing = {topic for robot in self.robots for topic in robot.sensing()}
-        self.publish_state()
+        # Handed over to every connection, one made as the publishers were advertised too.
+        self.late.hold_the_reset_state(self.publish_state)
         self.unanswered.went_out(time.monotonic())
 
     def make_publisher(self, topic: str, message_class: Any = None) -> Any:
