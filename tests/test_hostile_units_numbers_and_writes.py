@@ -195,6 +195,33 @@ def test_a_hostile_value_is_refused_saying_what_was_expected(case: str) -> None:
     assert any(word in message for word in ("expected", "must", "duplicate")), message
 
 
+@pytest.mark.parametrize(
+    ("line", "field", "shown"),
+    [
+        ("cell_size = 1e300", "grid.cell_size", "1e300"),
+        ("cell_size = 1e-300", "grid.wall_thickness", "1e-300"),  # the wall is the thicker
+    ],
+)
+def test_a_grid_size_refused_is_named_and_shown_as_written(
+    line: str, field: str, shown: str
+) -> None:
+    # A huge cell size was reported under grid.wall_thickness, a tiny one with hundreds of zeros.
+    with pytest.raises(mazesim.WorldFormatError) as raised:
+        _grid("cell_size = 0.25", line)()
+    message = str(raised.value)
+    assert f"`{field}`" in message and shown in message and "0.0000" not in message, message
+
+
+def test_an_output_overlapping_another_is_said_to_share_its_memory() -> None:
+    # The refusal read "expected ..., writable and not borrowed elsewhere, found an ndarray of
+    # dtype float32 and shape (2, 3)": what was found looked like what was expected.
+    def overlapping(out: list[Any]) -> None:
+        out[1] = out[0].reshape(-1)[: out[1].size].reshape(out[1].shape)  # contiguous, aligned
+
+    with pytest.raises(mazesim.InvalidArgumentError, match="sharing memory with another argument"):
+        _step_into(overlapping)
+
+
 def _write(path: Path, fail: BaseException) -> None:
     """Writes ``path`` through the atomic writer while the writes of the disk fail with
     ``fail`` once half the content is written."""

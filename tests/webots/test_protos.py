@@ -860,3 +860,23 @@ def test_a_world_s_expansions_are_bounded_in_characters(
     assert 0 < kept < 6, report["obstacles"]
     said = [w for w in report["warnings"] if "expand to more than 400 characters" in w]
     assert len(said) == 1, report["warnings"]
+
+
+@pytest.mark.parametrize("kind", ["character device", "folder"])
+def test_an_externproto_that_is_no_regular_file_is_refused_as_what_it_is(
+    tmp_path: Path, kind: str
+) -> None:
+    # A PROTO path that is a link to /dev/zero was said to be "no such file" (then looked for
+    # in protos/): it exists, and is left out for what it is, with a warning that says so.
+    (tmp_path / "worlds").mkdir()
+    (tmp_path / "protos").mkdir()
+    target = tmp_path / "protos" / "Zero.proto"
+    if kind == "folder":
+        target.mkdir()
+    else:
+        target.symlink_to("/dev/zero")
+    world = tmp_path / "worlds" / "w.wbt"
+    world.write_text('#VRML_SIM R2023b utf8\nEXTERNPROTO "../protos/Zero.proto"\nZero { }\n')
+    _, report = import_wbt(world)
+    said = " ".join(report["warnings"])
+    assert "no such file" not in said and "expected a regular file" in said, said

@@ -234,6 +234,8 @@ def test_an_unlimited_emitter_buffer_is_bounded_and_a_packet_beyond_it_refused()
         e_puck.send(range(10**9))
     with pytest.raises(InvalidArgumentError, match="length"):
         e_puck.send(b"abc", math.nan)
+    with pytest.raises(InvalidArgumentError, match="UTF-8 encodes.*at character 2"):
+        e_puck.send("ab\ud800c")  # a lone surrogate: no UTF-8 for it
     half = b"x" * (MAX_UNLIMITED_BUFFER_BYTES // 2)
     assert (e_puck.send(half), e_puck.send(half), e_puck.send(b"y")) == (1, 1, 0)
     pair.step()

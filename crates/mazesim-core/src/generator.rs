@@ -163,7 +163,7 @@ impl MazeParams {
             )));
         }
         crate::world::grid::check_cell_walls(params.cell_size, params.wall_thickness)
-            .map_err(Error::InvalidArgument)?;
+            .map_err(|(_, message)| Error::InvalidArgument(message))?;
         let side = params.width.max(params.height) as f64 * params.cell_size;
         if side > crate::limits::MAX_COORDINATE {
             return Err(Error::InvalidArgument(format!(

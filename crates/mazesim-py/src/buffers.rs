@@ -60,6 +60,22 @@ fn refusal(name: &str, expected: &str, obj: &Bound<'_, PyAny>) -> String {
     )
 }
 
+/// An array of the right dtype, shape and layout that cannot be borrowed: another argument of
+/// the call holds its memory (an output overlapping another, or an input that is a view of an
+/// output), which the description of what was found says, so that it never reads "expected X,
+/// found X".
+fn shared<T>(name: &str, expected: &str, obj: &Bound<'_, PyAny>, clash: &str) -> PyResult<T> {
+    let mut found = describe(obj, expected);
+    if !found.contains("read-only") {
+        found.push_str(&format!(
+            ", sharing memory with {clash} of this call (give each its own array)"
+        ));
+    }
+    Err(to_py(Error::InvalidArgument(format!(
+        "expected {name} to be an aligned, C-contiguous numpy array of {expected}, found {found}"
+    ))))
+}
+
 /// A numpy array of the right dtype whose shape, layout or borrow does not fit.
 fn wrong<T>(name: &str, expected: &str, obj: &Bound<'_, PyAny>) -> PyResult<T> {
     Err(to_py(Error::InvalidArgument(refusal(name, expected, obj))))
@@ -101,11 +117,8 @@ pub fn writable<'py, T: Element>(
 ) -> PyResult<PyReadwriteArrayDyn<'py, T>> {
     let (array, expected) = usable_array::<T>(obj, name, dtype, shape)?;
     array.try_readwrite().or_else(|_| {
-        wrong(
-            name,
-            &format!("{expected}, writable and not borrowed elsewhere"),
-            obj,
-        )
+        let unshared = format!("{expected}, writable and not borrowed elsewhere");
+        shared(name, &unshared, obj, "another argument")
     })
 }
 
@@ -119,7 +132,7 @@ pub fn readable<'py, T: Element>(
     let (array, expected) = usable_array::<T>(obj, name, dtype, shape)?;
     array.try_readonly().or_else(|_| {
         let unshared = format!("{expected}, not written by another argument of this call");
-        wrong(name, &unshared, obj)
+        shared(name, &unshared, obj, "an output")
     })
 }
 

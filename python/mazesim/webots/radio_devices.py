@@ -98,7 +98,14 @@ def _packet_bytes(message: Any, length: int | None, most: int) -> bytes:
             f"a bufferSize of -1), found {claimed} bytes; send it in smaller packets"
         )
     if isinstance(message, str):
-        data = message.encode("utf-8")
+        try:
+            data = message.encode("utf-8")
+        except UnicodeEncodeError as error:  # a lone surrogate: no UTF-8 for it
+            raise InvalidArgumentError(
+                "Emitter.send: packet refused: expected text that UTF-8 encodes, found "
+                f"{_shown(message[error.start : error.end])} at character {error.start} (a "
+                "lone surrogate); send bytes, or text without it"
+            ) from None
     elif isinstance(message, (bytes, bytearray, memoryview)):
         data = bytes(message)
     else:

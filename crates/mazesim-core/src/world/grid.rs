@@ -64,22 +64,29 @@ fn width_problem(width: usize) -> String {
 /// a cell maze's sizes, for a generated maze and a drawn one (`[grid]`) alike.
 /// A cell is at most `MAX_CELL_SIZE` a side (far inside the coordinates every wall and pose is
 /// bounded by): a larger one is a size in centimetres or millimetres taken for metres.
-pub fn check_cell_walls(cell_size: f64, wall_thickness: f64) -> Result<(), String> {
+/// The error names the size it is about (`"cell_size"` or `"wall_thickness"`).
+pub fn check_cell_walls(cell_size: f64, wall_thickness: f64) -> Result<(), (&'static str, String)> {
     let sizes_ok = cell_size.is_finite() && wall_thickness.is_finite() && cell_size > 0.0;
     if sizes_ok && wall_thickness > 0.0 && wall_thickness < cell_size {
         let most = crate::limits::MAX_CELL_SIZE;
         if cell_size > most {
-            return Err(format!(
-                "expected a cell size in metres of at most {most:?} m, found {cell_size:?} m \
-                 (is it in centimetres or millimetres? 25 cm is 0.25)"
+            return Err((
+                "cell_size",
+                format!(
+                    "expected a cell size in metres of at most {most:?} m, found {cell_size:?} \
+                     m (is it in centimetres or millimetres? 25 cm is 0.25)"
+                ),
             ));
         }
         return Ok(());
     }
-    Err(format!(
-        "expected 0 < wall thickness < cell size (a wall thinner than its cell, so a corridor \
-         is left between walls), found wall thickness {wall_thickness} m and cell size \
-         {cell_size} m"
+    Err((
+        "wall_thickness",
+        format!(
+            "expected 0 < wall thickness < cell size (a wall thinner than its cell, so a corridor \
+         is left between walls), found wall thickness {wall_thickness:?} m and cell size \
+         {cell_size:?} m"
+        ),
     ))
 }
 

@@ -90,6 +90,9 @@ pub fn from_toml_error(source: &str, text: &str, err: &toml::de::Error) -> Error
     let span = err.span();
     let offset = span.as_ref().map_or(0, |s| s.start);
     let mut message = in_plain_words(err.message().trim());
+    if let Some(written) = span.as_ref().and_then(|s| text.get(s.clone())) {
+        message = date_time_named(message, written.trim());
+    }
     let whole = span
         .as_ref()
         .is_none_or(|s| s.start == 0 && (s.end == 0 || s.end >= text.trim_end().len()));
@@ -151,6 +154,19 @@ fn in_plain_words(message: &str) -> String {
         }
     }
     text
+}
+
+/// A TOML date-time is read as a map: "found map" for one written where another type is
+/// expected says "found the date-time `...`" instead.
+fn date_time_named(message: String, written: &str) -> String {
+    let date_like = written.chars().next().is_some_and(|c| c.is_ascii_digit())
+        && written.len() <= 40
+        && (written.contains('-') || written.contains(':'))
+        && !written.contains(['{', '[', '"', '\'', '\n']);
+    match message.strip_suffix("found map") {
+        Some(before) if date_like => format!("{before}found the date-time `{written}`"),
+        _ => message,
+    }
 }
 
 /// Refuses a world text of more tables than a world within the limits has
@@ -220,6 +236,29 @@ mod tests {
         for (reader, said) in cases {
             assert_eq!(in_plain_words(reader), said);
         }
+    }
+
+    #[test]
+    fn a_date_time_where_another_type_is_expected_is_named_as_written() {
+        let text = "format = \"mazesim-world\"\nversion = 1\nname = 1979-05-27T07:32:00Z\n";
+        let err = toml::from_str::<toml::Table>(text)
+            .and_then(|_| toml::from_str::<NameOnly>(text))
+            .unwrap_err();
+        let said = from_toml_error("w.toml", text, &err).to_string();
+        assert!(
+            said.contains("found the date-time `1979-05-27T07:32:00Z`"),
+            "{said}"
+        );
+        assert_eq!(
+            date_time_named("expected a string, found map".into(), "{ a = 1 }"),
+            "expected a string, found map"
+        );
+    }
+
+    #[derive(serde::Deserialize, Debug)]
+    #[allow(dead_code)]
+    struct NameOnly {
+        name: String,
     }
 
     #[test]

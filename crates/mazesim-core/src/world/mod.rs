@@ -204,8 +204,8 @@ impl World {
             })?;
             let origin = xy(&g.origin);
             let cs = g.cell_size.get();
-            grid::check_cell_walls(cs, g.wall_thickness.get()).map_err(|message| {
-                check.refused(Place::Table("grid"), "grid.wall_thickness", message)
+            grid::check_cell_walls(cs, g.wall_thickness.get()).map_err(|(size, message)| {
+                check.refused(Place::Table("grid"), &format!("grid.{size}"), message)
             })?;
             check.within(
                 Place::Table("grid"),

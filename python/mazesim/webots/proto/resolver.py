@@ -146,7 +146,8 @@ class Resolver:
     def declared(self, url: str, base: str) -> ProtoSource | None:
         """The file of an ``EXTERNPROTO`` URL written in a file at ``base``.
 
-        Returns None for a relative path that does not exist.
+        Returns None for a relative path that does not exist (one that is no regular file, a
+        device or a folder, is read and refused as such: it exists).
 
         Raises:
             ProtoUnavailableError: A URL cannot be downloaded.
@@ -162,7 +163,7 @@ class Resolver:
         if is_url(base):
             return self.url(urllib.parse.urljoin(base, url))
         path = Path(os.path.dirname(base)) / url
-        if path.is_file():
+        if path.exists():
             return ProtoSource(_read(path), str(path.resolve()))
         return None
 
