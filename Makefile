@@ -33,8 +33,10 @@ SB3_PACKAGES := "stable-baselines3>=2.3,<3" "sb3-contrib>=2.3,<3"
 # "marl"): PettingZoo, for mazesim.marl's multi-robot environments, their tests and examples.
 MARL_PACKAGES := "pettingzoo>=1.24"
 # The packages the compatibility corpus's controllers import (pyproject's webots-corpus extra).
+# OpenCV below 5: the projects were written for OpenCV 4 (its HoughLinesP returns None when it
+# finds no line, OpenCV 5's an empty array, which a controller testing for None crashes on).
 WEBOTS_CORPUS_PACKAGES := "scikit-fuzzy>=0.5" "scipy>=1.8" "networkx>=2.6" "deap>=1.3" "nnfs>=0.5" "pandas>=1.3" \
-	"opencv-python>=4.5" "scikit-learn>=1.0" "gym>=0.26" "tensorboardX>=2.6"
+	"opencv-python>=4.5,<5" "scikit-learn>=1.0" "gym>=0.26" "tensorboardX>=2.6"
 # deepbots (the Webots RL framework several corpus projects build on) pins gym 0.21, which no
 # longer builds on this Python; it runs on gym 0.26, so it is installed without its pins.
 WEBOTS_CORPUS_NO_DEPS := "deepbots==1.0.0"

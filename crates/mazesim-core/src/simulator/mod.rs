@@ -172,6 +172,20 @@ impl Simulator {
     /// A simulator of the robot of `rig` (shared with other simulators), reset to the world's
     /// start pose.
     pub fn with_rig(world: Arc<World>, rig: Arc<Rig>, config: SimConfig) -> Result<Self> {
+        let start = world.start();
+        Self::with_rig_at(world, rig, config, start)
+    }
+
+    /// A simulator of the robot of `rig` made at `start` (x, y, yaw), which must be clear of
+    /// the walls for this robot: one of several robots is checked at its own start, not at the
+    /// world's (the first robot's), where a larger robot may not fit. `reset` still goes to
+    /// the world's start unless a start is set.
+    pub fn with_rig_at(
+        world: Arc<World>,
+        rig: Arc<Rig>,
+        config: SimConfig,
+        start: [f64; 3],
+    ) -> Result<Self> {
         let robot = rig.robot.clone();
         let dt = world.basic_time_step();
         let control = config.control_step.unwrap_or(dt);
@@ -195,7 +209,6 @@ impl Simulator {
                 ratio.round()
             )));
         }
-        let start = world.start();
         check_free(&world, &robot, "start pose", start)?;
         let pose = [start[0] as f32, start[1] as f32, start[2] as f32];
         let body = Body::new(

@@ -375,7 +375,10 @@ impl Simulator {
 
     /// A simulator in the same state as this one, which goes on exactly as this one would.
     pub fn duplicate(&self) -> Result<Simulator> {
-        let mut copy = Simulator::with_rig(self.world.clone(), self.rig.clone(), self.config())?;
+        // Made at its own start: a robot of several may not fit at the world's.
+        let start = (self.start_override).map_or(self.world.start(), |s| s.map(f64::from));
+        let (world, rig) = (self.world.clone(), self.rig.clone());
+        let mut copy = Simulator::with_rig_at(world, rig, self.config(), start)?;
         copy.restore(&self.snapshot())?;
         Ok(copy)
     }

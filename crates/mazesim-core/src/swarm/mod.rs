@@ -228,8 +228,14 @@ pub fn make_robots(
     let mut robots = Vec::with_capacity(placements.len());
     for (i, (placement, rig)) in placements.iter().zip(rigs).enumerate() {
         let seed = robot_seed(config.seed, i, &placement.name);
-        let mut sim =
-            Simulator::with_rig(world.clone(), rig.clone(), SimConfig { seed, ..config })?;
+        // Made at its own start: a larger robot may not fit at the first robot's.
+        let mut sim = Simulator::with_rig_at(
+            world.clone(),
+            rig.clone(),
+            SimConfig { seed, ..config },
+            placement.start,
+        )
+        .map_err(|e| name_robot(e, &placement.name))?;
         let [x, y, yaw] = placement.start;
         sim.set_start(x, y, yaw)
             .map_err(|e| name_robot(e, &placement.name))?;
@@ -685,7 +691,13 @@ impl Swarm {
                 None => self.rig_for(placement),
             };
             let seed = robot_seed(config.seed, i.max(1), &placement.name);
-            let mut sim = Simulator::with_rig(world.clone(), rig?, SimConfig { seed, ..config })?;
+            let mut sim = Simulator::with_rig_at(
+                world.clone(),
+                rig?,
+                SimConfig { seed, ..config },
+                placement.start,
+            )
+            .map_err(|e| name_robot(e, &placement.name))?;
             let [x, y, yaw] = placement.start;
             sim.set_start(x, y, yaw)
                 .map_err(|e| name_robot(e, &placement.name))?;

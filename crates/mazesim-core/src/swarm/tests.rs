@@ -833,3 +833,41 @@ fn a_pose_a_few_millimetres_into_a_wall_is_pushed_out_clear_of_it_and_of_other_r
     );
     assert_eq!(push(&mut swarm, [-0.3, 0.066], true).unwrap(), alone);
 }
+
+#[test]
+fn a_larger_robot_is_checked_at_its_own_start_not_at_the_first_robots() {
+    // The first e-puck starts 3 mm from the corridor's wall; a robot of radius 0.064 m fits at
+    // its own start in the middle but not at the e-puck's: it was checked there and refused.
+    let text = r#"format = "mazesim-world"
+version = 1
+name = "mixed"
+
+[[walls]]
+center = [0.0, 0.105]
+size = [1.0, 0.01]
+
+[[walls]]
+center = [0.0, -0.105]
+size = [1.0, 0.01]
+
+[[robots]]
+name = "corner"
+x = -0.3
+y = 0.06
+yaw = 0.0
+
+[[robots]]
+name = "big"
+x = 0.2
+y = 0.0
+yaw = 0.0
+"#;
+    let world = Arc::new(World::from_toml(text, "mixed").unwrap());
+    let mut big = RobotProfile::builtin("e-puck").unwrap();
+    big.body_radius = 0.064;
+    let profiles = [None, Some(Arc::new(big))];
+    let swarm = Swarm::with_profiles(world, epuck(), &profiles, SimConfig::default()).unwrap();
+    let [corner, big] = [0, 1].map(|i| swarm.robots()[i].pose());
+    assert_eq!([corner[0], corner[1]], [-0.3, 0.06]);
+    assert_eq!([big[0], big[1]], [0.2, 0.0]);
+}
