@@ -233,3 +233,40 @@ def test_a_robot_with_a_ps0_of_its_own_still_rolls_on_its_own_wheels(tmp_path: P
     assert report["robot_model"] == "E-puck"
     (robot,) = run_world(path, seconds=1.2).robots
     assert robot.final_pose[0] == pytest.approx(62 * 0.016 * 2.0 * 0.025, abs=2e-3)
+
+
+def test_a_downward_sensor_is_as_high_as_the_robot_rests_on_its_wheels(
+    tmp_path: Path, capfd: pytest.CaptureFixture[str]
+) -> None:
+    """A line follower built on its axle (its origin 1.4 cm up, on wheels of that radius) with
+    an infra-red sensor 5.4 mm below its origin looking down: 8.6 mm above the floor. Its
+    height was read from the origin as if the origin were on the floor (5.4 mm below it: 0
+    on white, always black)."""
+    wheel = (
+        "HingeJoint {{ jointParameters HingeJointParameters {{ axis 0 1 0 anchor 0 {y} 0 }} "
+        'device [ RotationalMotor {{ name "{name}" }} ] endPoint Solid {{ translation 0 {y} 0 '
+        "rotation 1 0 0 1.5708 children [ Shape {{ geometry Cylinder {{ height 0.011 radius "
+        '0.014 }} }} ] name "{name}" boundingObject Cylinder {{ height 0.011 radius 0.014 }} '
+        "physics Physics {{ }} }} }}\n"
+    )
+    text = (
+        "#VRML_SIM R2023b utf8\nWorldInfo { basicTimeStep 32 }\nRectangleArena { }\n"
+        "Robot { translation 0 0 0.014 children [\n"
+        'DistanceSensor { translation 0.02 0 -0.0054 rotation 0 1 0 1.5708 name "down" '
+        'type "infra-red" }\n'
+        + wheel.format(y=0.0305, name="left")
+        + wheel.format(y=-0.0305, name="right")
+        + '] boundingObject Box { size 0.04 0.04 0.01 } physics Physics { } controller "down" }\n'
+    )
+    (tmp_path / "worlds").mkdir()
+    (tmp_path / "worlds" / "down.wbt").write_text(text)
+    (tmp_path / "controllers" / "down").mkdir(parents=True)
+    (tmp_path / "controllers" / "down" / "down.py").write_text(
+        "from controller import Robot\nr = Robot()\ns = r.getDevice('down')\ns.enable(32)\n"
+        "r.step(32)\nprint('down', s.getValue())\n"
+    )
+    run = run_world(str(tmp_path / "worlds" / "down.wbt"), seconds=0.1, noise=False)
+    assert run.robots[0].exit_status == 0, run.robots[0].error
+    (line,) = [line for line in capfd.readouterr().out.splitlines() if line.startswith("down")]
+    # Webots' default table [0 0 0, 0.1 1000 0] on a white floor: 8.6 mm reads 86.
+    assert float(line.split()[1]) == pytest.approx(86.0, abs=0.5), line

@@ -87,6 +87,27 @@ def test_controllers_are_found_in_the_project_or_given() -> None:
     assert none is None and why == "no controller"
 
 
+def test_a_robot_writing_no_name_is_given_a_controller_by_the_name_webots_gives_it(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    # An E-puck writing no name field is "e-puck" in the summary and to getName(), but
+    # --robot-controller e-puck=FILE did not reach it; a robot with controller "" could not be
+    # given one at all; a NAME matching no robot was ignored without a word.
+    e_puck = {"model": "E-puck", "controller": "<extern>"}
+    given, _ = controller_of(e_puck, str(WORLD), {"e-puck": "fwd.py"})
+    assert Path(str(given)).name == "fwd.py"
+    none, why = controller_of(e_puck, str(WORLD), {})
+    assert none is None and "--robot-controller e-puck=FILE" in why
+    given, _ = controller_of({**e_puck, "controller": ""}, str(WORLD), {"e-puck": "fwd.py"})
+    assert Path(str(given)).name == "fwd.py"
+    from mazesim.webots.lockstep import _say_unmatched
+
+    _say_unmatched({"e-puck": "fwd.py", "epuck": "fwd.py"}, [e_puck], str(WORLD))
+    said = capsys.readouterr().err
+    assert "robot 'epuck', but no robot" in said and "'e-puck' (DEF -" in said, said
+    assert "robot 'e-puck'," not in said
+
+
 def test_a_controller_field_with_a_typo_is_told_the_project_controller_meant(
     tmp_path: Path,
 ) -> None:
@@ -749,3 +770,26 @@ def test_a_python_controller_s_threads_may_call_the_api_at_once_in_a_world_run(
     out, err = capfd.readouterr()
     assert "threads done True 0.64" in out
     assert "internal error" not in err
+
+
+def test_a_proto_robot_writing_no_name_is_never_called_e_puck(tmp_path: Path) -> None:
+    # A TurtleBot3Burger and a Pioneer3dx writing no name field: getName() said "e-puck".
+    (tmp_path / "worlds").mkdir()
+    (tmp_path / "controllers" / "who").mkdir(parents=True)
+    (tmp_path / "controllers" / "who" / "who.py").write_text(
+        "from controller import Robot\nr = Robot()\nprint('name:', r.getName())\nr.step(32)\n"
+    )
+    world = tmp_path / "worlds" / "names.wbt"
+    world.write_text(
+        "#VRML_SIM R2023b utf8\nWorldInfo { basicTimeStep 32 }\nRectangleArena { floorSize 4 4 }\n"
+        'TurtleBot3Burger { translation -1 0 0 controller "who" }\n'
+        'Pioneer3dx { translation 1 0 0 controller "who" }\n'
+    )
+    result = mazesim_command(
+        *("webots", "run", str(world), "--seconds", "0.1", "--out", str(tmp_path / "run")),
+        cwd=tmp_path,
+        env=dict(os.environ, MPLBACKEND="Agg"),
+    )
+    assert result.returncode == 0, result.stderr
+    names = sorted(line for line in result.stdout.splitlines() if line.startswith("name:"))
+    assert names == ["name: Pioneer3dx", "name: TurtleBot3Burger"], result.stdout

@@ -15,6 +15,7 @@ from __future__ import annotations
 import math
 import sys
 from collections.abc import Callable, Mapping, Sequence
+from dataclasses import replace
 from typing import Any
 
 from mazesim.errors import _shown
@@ -247,11 +248,7 @@ def extension_device(simulation: RobotSimulation, entry: Mapping[str, Any]) -> D
             else LightSensor(name, simulation, mount=mount)
         ),
         "LED": lambda: LED(name, simulation),
-        "Camera": lambda: Camera(
-            name,
-            simulation,
-            node_view(entry, simulation.scene.y_up_devices, _still_mount(simulation)),
-        ),
+        "Camera": lambda: Camera(name, simulation, _camera_view(simulation, entry)),
         "Emitter": lambda: emitter_from_fields(name, simulation, fields, entry.get("axes")),
         "Receiver": lambda: receiver_from_fields(name, simulation, fields, entry.get("axes")),
         "Speaker": lambda: Speaker(name, simulation),
@@ -307,6 +304,17 @@ def _bumper(simulation: RobotSimulation, name: str) -> list[Footprint]:
         simulation.scene.body_y_up,
         "touch sensor",
     )
+
+
+def _camera_view(simulation: RobotSimulation, entry: Mapping[str, Any]) -> CameraView:
+    """Where a camera of the run's robot sits and looks: on a robot node mazesim does not move,
+    from its full pose; on one it simulates, as high above the floor as the robot's origin
+    rests (``Scene.origin_height``: a plain Robot's on its wheels) plus the camera's place."""
+    mount = _still_mount(simulation)
+    view = node_view(entry, simulation.scene.y_up_devices, mount)
+    if mount is None and simulation.scene.origin_height > 0.0:
+        view = replace(view, z=view.z + simulation.scene.origin_height)
+    return view
 
 
 def _still_mount(simulation: RobotSimulation) -> Mount | None:

@@ -628,6 +628,32 @@ class Fleet:
             self._simulators[index] = RobotView(shared, place)
 
 
+def _say_unmatched(
+    given: Mapping[str, str], robots: list[Mapping[str, Any]], world_path: str
+) -> None:
+    """Warns of a controller given for a robot that no robot of the world is: none has that
+    name (as Webots calls it, its default too), DEF name or controller field. It was left
+    unused without a word, and the robot meant ran the world's controller or stood still. It
+    still applies to a robot a supervisor imports by that name."""
+    known = [
+        {robot_label(r), r.get("name"), r.get("def_name"), r.get("controller")} for r in robots
+    ]
+    for key in given:
+        if not any(key in keys for keys in known):
+            listed = "; ".join(
+                f"{_shown(robot_label(r))} (DEF {r.get('def_name') or '-'}, controller "
+                f"{_shown(r.get('controller'))})"
+                for r in robots[:20]
+            )
+            print(
+                f"mazesim: warning: a controller was given for robot {_shown(key)}, but no "
+                f"robot of {_shown(os.path.basename(world_path))} has that name, DEF name or "
+                f"controller field (it applies to a robot a supervisor imports so): expected "
+                f"one of its {len(robots)} robots: {listed}",
+                file=sys.stderr,
+            )
+
+
 def controller_of(
     robot: Mapping[str, Any], world_path: str, given: Mapping[str, str], by_field: bool = False
 ) -> tuple[str | None, str]:
@@ -646,9 +672,9 @@ def controller_of(
             given by name when the field now reads ``<extern>``, the controller Webots leaves
             to be started outside).
     """
-    keys = [robot.get("name"), robot.get("def_name"), robot.get("controller")]
+    keys = [robot.get("name"), robot_label(robot), robot.get("def_name"), robot.get("controller")]
     if by_field and robot.get("controller") != EXTERN:
-        keys = keys[2:]
+        keys = keys[3:]
     for key in keys:
         if key and key in given:
             return os.path.abspath(given[key]), ""
@@ -657,8 +683,7 @@ def controller_of(
         return None, "no controller"
     if name == EXTERN:
         return None, (
-            "an <extern> controller: give it with --robot-controller "
-            f"{robot.get('name') or robot.get('def_name') or '<name>'}=FILE"
+            f"an <extern> controller: give it with --robot-controller {robot_label(robot)}=FILE"
         )
     folder = os.path.dirname(os.path.abspath(world_path))
     for project in (os.path.dirname(folder), folder):
@@ -759,6 +784,7 @@ def run_world(
     """
     world, report, summary = _imported(world_path)
     robots: list[Mapping[str, Any]] = list(report.get("robots") or [])
+    _say_unmatched(controllers or {}, robots, world_path)
     _say_import(summary)
     streams = np.random.SeedSequence(seed).spawn(len(robots))
     e_pucks = [i for i, robot in enumerate(robots) if robot.get("profile") is not None]

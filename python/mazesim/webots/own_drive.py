@@ -45,7 +45,7 @@ from mazesim.errors import _shown
 from mazesim.webots.frames import WORLD_FRAME, Frame, nue_to_enu, placed
 from mazesim.webots.proto.syntax import Field, Node, first_value, nodes_in_order
 
-__all__ = ["OwnDrive", "drive_layout", "own_drive"]
+__all__ = ["OwnDrive", "drive_layout", "own_drive", "resting_height"]
 
 #: Webots' ``RotationalMotor.maxVelocity`` where the node writes none (rad/s).
 DEFAULT_MAX_VELOCITY = 10.0
@@ -160,6 +160,22 @@ def own_drive(robot: Node, y_up: bool) -> OwnDrive | str | None:
         max_velocity=min(left.max_velocity, right.max_velocity),
         warnings=warnings,
     )
+
+
+def resting_height(robot: Node, y_up: bool) -> float:
+    """How high a plain robot node's origin rests above the floor on its two wheels (m): each
+    wheel's radius less its height above the origin, their mean (0 without two wheels, or for
+    a wheel of no size: a robot standing on its origin). A plain Robot's origin is often its
+    axle or its body's centre, so a sensor pointed at the floor is that much higher than its
+    place in the robot says (a line follower's 7 mm sensor read as 0 mm: always black)."""
+    wheels = _wheels(robot, y_up, _resolver(robot))
+    if len(wheels) != 2:
+        return 0.0
+    heights = [
+        (wheel.radius if wheel.radius is not None else wheel.anchor[2]) - wheel.anchor[2]
+        for wheel in wheels
+    ]
+    return max(0.0, sum(heights) / 2)
 
 
 def drive_layout(layout: dict[str, Any], drive: OwnDrive) -> None:

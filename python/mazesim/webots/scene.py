@@ -28,7 +28,7 @@ from mazesim.webots.frames import (
     rotation_matrix,
 )
 from mazesim.webots.lights import Light, LightSource, light_sources, lit
-from mazesim.webots.own_drive import OwnDrive, own_drive
+from mazesim.webots.own_drive import OwnDrive, own_drive, resting_height
 from mazesim.webots.proto.syntax import (
     Field,
     Node,
@@ -240,6 +240,10 @@ class Scene:
             (:func:`~mazesim.webots.own_drive.own_drive`); None for another robot.
         drive_refused: Why such a robot's own two wheels do not drive it (the e-puck's then
             do), None otherwise.
+        origin_height: How high a plain ``Robot`` node's origin rests above the floor on its
+            two wheels (m; :func:`~mazesim.webots.own_drive.resting_height`): a downward
+            sensor's height above the floor is its own above the origin plus this; 0 for an
+            E-puck, whose origin is on the floor.
     """
 
     defs: dict[str, str] = field(default_factory=dict)
@@ -277,6 +281,7 @@ class Scene:
     sensor_types: dict[str, str] = field(default_factory=dict)
     drive: OwnDrive | None = None
     drive_refused: str | None = None
+    origin_height: float = 0.0
 
 
 def _hinge_wheels(year: str | None) -> bool:
@@ -442,6 +447,7 @@ def _scene(
                 found = own_drive(robot, scene.body_y_up)
                 scene.drive = found if isinstance(found, OwnDrive) else None
                 scene.drive_refused = found if isinstance(found, str) else None
+                scene.origin_height = resting_height(robot, scene.body_y_up)
         if robot.type_name == "E-puck":
             scene.infrared_elevation = EPUCK_IR_ELEVATION
         kinematic = first_value(own, "kinematic", Field.flag)

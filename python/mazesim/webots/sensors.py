@@ -622,7 +622,8 @@ class RayDistanceSensor(DistanceSensor):
         reach = self.getMaxRange()
         d = float(distance[0]) / max(math.cos(pitch), 1e-9)
         factor = float(reflectance[0])
-        if pitch > 0.0 and self._mount.z > 0.0 and self._mount.z / math.sin(pitch) < min(d, reach):
+        height = self._height()
+        if pitch > 0.0 and height > 0.0 and height / math.sin(pitch) < min(d, reach):
             d, factor = self._floor_hit()
         if math.isfinite(d):
             d = self._reflected(d, factor)
@@ -638,13 +639,19 @@ class RayDistanceSensor(DistanceSensor):
             return reflected
         return d + (reflected - d) * self._red_sensitivity
 
+    def _height(self) -> float:
+        """The mount's height above the floor: its own above the robot's origin, plus how high
+        the origin rests (a plain Robot's on its wheels; an E-puck's is on the floor)."""
+        return self._mount.z + self._simulation.scene.origin_height
+
     def _floor_hit(self) -> tuple[float, float]:
         """How far the ray goes to the floor and the floor's reflection factor where it meets
         it: ``z / sin(pitch)`` away, ahead of the mount by ``z / tan(pitch)``. The height is
-        the mount's as Webots has it (the R2022a E-puck's slot holds a sensor 0.3 mm up); one on
-        or below the floor's plane meets it a micrometre away."""
+        the mount's as Webots has it (the R2022a E-puck's slot holds a sensor 0.3 mm up), above
+        the robot's resting origin (:meth:`_height`); one on or below the floor's plane meets it
+        a micrometre away."""
         mount = self._mount
-        height = max(mount.z, 1e-6)
+        height = max(self._height(), 1e-6)
         sine = math.sin(mount.pitch)
         ahead = height * math.cos(mount.pitch) / sine
         x, y, heading = mount.world_pose(self._simulation.simulator.pose)

@@ -288,8 +288,13 @@ class RobotSimulation:
     def robot_name(self) -> str:
         """What Webots calls the run's robot: its node's ``name`` once the project's PROTOs are
         expanded (a project robot PROTO's declared default when the instance writes none),
-        else its node type's default (the scene's: the E-puck's "e-puck", a Robot's "robot")."""
-        return str(self.own_robot.get("name") or self.scene.robot_name)
+        else as :func:`~mazesim.webots.proto_fields.robot_label` calls it (its node type's
+        default, the E-puck's "e-puck", a Robot's "robot"; another PROTO robot's DEF name or
+        model, never "e-puck"), else the scene's."""
+        from mazesim.webots.proto_fields import robot_label
+
+        own = self.own_robot
+        return str(own.get("name") or (robot_label(own) if own else self.scene.robot_name))
 
     @property
     def time_is_up(self) -> bool:
