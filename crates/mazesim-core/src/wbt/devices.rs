@@ -476,10 +476,20 @@ impl<'d> Importer<'d> {
         if let Some(proto) = DEVICE_PROTOS.iter().find(|p| p.proto == kind) {
             return self.device_proto(node, slot, frame, proto);
         }
-        let local = self.local_frame(node, [0.0; 3]);
+        // A joint has no place of its own: its devices sit at its parent's, its end point where
+        // its own translation puts it.
+        let joint = JOINTS.contains(&kind);
+        let local = if joint {
+            Frame::IDENTITY
+        } else {
+            self.local_frame(node, [0.0; 3])
+        };
         let frame = frame.then(&local);
         if let Some(&(_, default_name)) = DEVICE_TYPES.iter().find(|(t, _)| *t == kind) {
             self.device(node, slot, &frame, default_name);
+        } else if joint {
+            // Its motors and position sensors (`device`) and its end point's devices are listed
+            // below, as a plain robot's joints' are (the run turns such a joint freely).
         } else if CONTAINERS.contains(&kind) {
             if !self.nodes(node, "boundingObject").is_empty() {
                 let label = self.label(node);
@@ -499,8 +509,10 @@ impl<'d> Importer<'d> {
             };
             self.warn(format!("{label}: in the robot's {slot}: {what}"));
         }
-        for &child in self.nodes(node, "children") {
-            self.slot_node(self.node(child), slot, &frame, depth + 1);
+        for field in ["children", "device", "endPoint"] {
+            for &child in self.nodes(node, field) {
+                self.slot_node(self.node(child), slot, &frame, depth + 1);
+            }
         }
     }
 
@@ -680,6 +692,39 @@ mod tests {
         assert_eq!(missing(own), ground);
         let old = "#VRML_SIM V8.5 utf8\nE-puck { groundSensorsSlot [ E-puckGroundSensors { } ] }\n";
         assert!(missing(old).is_empty());
+    }
+
+    #[test]
+    fn a_joint_in_a_slot_gives_the_robot_its_motor_and_sensor_and_its_end_points_devices() {
+        // A lidar's motor on a HingeJoint in the turret slot was dropped ("not a device mazesim
+        // lists"): the controller's getDevice gave None and it stopped at its first call.
+        let w = WbtImport::from_text(
+            "#VRML_SIM R2023b utf8\nE-puck { turretSlot [ HingeJoint {\n\
+             jointParameters HingeJointParameters { axis 0 0 1 }\n\
+             device [ RotationalMotor { name \"turret motor\" } PositionSensor { name \"turret sensor\" } ]\n\
+             endPoint Solid { translation 0 0 0.01 children [ DistanceSensor { name \"top\" } ] }\n\
+             } ] }\n",
+            "test.wbt",
+        )
+        .unwrap_or_else(|e| panic!("{e}"));
+        let found: Vec<_> = w
+            .extension_devices
+            .iter()
+            .map(|d| (d.kind.as_str(), d.name.as_str(), d.slot.as_str()))
+            .collect();
+        assert_eq!(
+            found,
+            [
+                ("RotationalMotor", "turret motor", "turretSlot"),
+                ("PositionSensor", "turret sensor", "turretSlot"),
+                ("DistanceSensor", "top", "turretSlot"),
+            ]
+        );
+        assert!(
+            !w.warnings.iter().any(|m| m.contains("not a device")),
+            "{:?}",
+            w.warnings
+        );
     }
 
     #[test]
