@@ -110,6 +110,39 @@ def test_an_appearance_field_the_file_leaves_out_is_read_and_set_at_its_default(
     assert transparency.getSFFloat() == pytest.approx(0.8)
 
 
+def test_base_nodes_fields_are_found_at_their_defaults_and_of_their_own_types(
+    tmp_path: Path,
+) -> None:
+    # An inverted-pendulum supervisor reads the position of a HingeJointParameters in an
+    # E-puck's turretSlot (another robot's): no field there "existed" (a node in a slot had
+    # none); a field the
+    # file leaves out (axis, physics, locked) did not either; `position 1` was an SFInt32, so
+    # setSFFloat(0.5) read back 0.
+    supervisor = supervisor_in(
+        tmp_path,
+        "#VRML_SIM R2023b utf8\n"
+        "DEF EPUCK E-puck { supervisor TRUE }\n"
+        "E-puck { translation 0.3 0 0 turretSlot [ HingeJoint {\n"
+        "  jointParameters DEF SLOTTED HingeJointParameters { position -0.05 }\n"
+        "  endPoint DEF PEND Solid { translation 0 0 0.08 } } ] }\n"
+        "Solid { translation -0.3 0 0 children [ HingeJoint {\n"
+        "  jointParameters DEF TOP HingeJointParameters { position 1 } } ] }\n",
+    )
+    slotted = supervisor.getFromDef("SLOTTED").getField("position")
+    assert slotted is not None and slotted.getSFFloat() == pytest.approx(-0.05)
+    top = supervisor.getFromDef("TOP")
+    position = top.getField("position")
+    assert position.getTypeName() == "SFFloat"
+    position.setSFFloat(0.5)
+    assert position.getSFFloat() == pytest.approx(0.5)
+    assert top.getField("axis").getSFVec3f() == [1.0, 0.0, 0.0]  # HingeJointParameters' default
+    pend = supervisor.getFromDef("PEND")
+    assert pend.getField("translation").getSFVec3f() == pytest.approx([0.0, 0.0, 0.08])
+    assert pend.getField("physics").getSFNode() is None  # an SFNode left out: empty
+    assert pend.getField("locked").getSFBool() is False
+    assert pend.getField("name").getSFString() == "solid"
+
+
 def test_a_field_of_three_numbers_other_than_translation_is_set_and_read_back(
     tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:

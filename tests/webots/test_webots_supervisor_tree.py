@@ -338,7 +338,8 @@ def test_a_supervisor_reads_a_shapes_geometry_and_appearance_through_their_field
     # API's typed function refuses it.
     geometry_field = marker.getField("geometry")
     assert geometry_field.getSFVec3f() is geometry_field.getSFNode()
-    assert wall.getField("name") is None and geometry_field.c_sf_vec3f() is None
+    assert wall.getField("name").getSFString() == "solid", "a Solid's default name"
+    assert wall.getField("nothing") is None and geometry_field.c_sf_vec3f() is None
     ids = {shape.getId(), geometry.getId(), material.getId()}
     assert len(ids) == 3 and 0 not in ids
     assert supervisor.getFromId(geometry.getId()) is geometry

@@ -40,6 +40,8 @@ class DeclaredFields:
     flags: dict[str, bool] = field(default_factory=dict)
     #: Those of ``numbers`` that are ``SFFloat`` fields (a whole value is no ``SFInt32``).
     floats: frozenset[str] = frozenset()
+    #: Its ``SFNode`` fields (empty, ``NULL``, where the file leaves them out).
+    nodes: frozenset[str] = frozenset()
 
 
 _RECTANGLE_ARENA = DeclaredFields(
@@ -150,7 +152,84 @@ _DIRECTIONAL_LIGHT = DeclaredFields(
     flags=dict(_LIGHT_FLAGS),
     floats=_LIGHT_FLOATS,
 )
+# The single fields of the base nodes a supervisor reads most, with their defaults (Webots'
+# reference manual, R2023b: Pose, Transform, Solid, Robot, JointParameters,
+# HingeJointParameters, Physics): a field the file leaves out is found at its default, and a
+# float field written as a whole number (`position 1`) stays an SFFloat. `translation` and
+# `rotation` are a node's pose, kept apart (`Node.from_scene`).
+_POSE = DeclaredFields(
+    numbers={"translationStep": [0.01], "rotationStep": [0.261799]},
+    floats=frozenset({"translationStep", "rotationStep"}),
+)
+_TRANSFORM = DeclaredFields(
+    numbers={**_POSE.numbers, "scale": [1.0, 1.0, 1.0]}, floats=_POSE.floats
+)
+_SOLID = DeclaredFields(
+    numbers={
+        **_POSE.numbers,
+        "radarCrossSection": [0.0],
+        "linearVelocity": [0.0, 0.0, 0.0],
+        "angularVelocity": [0.0, 0.0, 0.0],
+    },
+    strings={"name": "solid", "model": "", "description": "", "contactMaterial": "default"},
+    flags={"locked": False},
+    floats=_POSE.floats | {"radarCrossSection"},
+    nodes=frozenset({"boundingObject", "physics"}),
+)
+_ROBOT = DeclaredFields(
+    numbers={**_SOLID.numbers, "cpuConsumption": [10.0]},
+    strings={
+        **_SOLID.strings,
+        "name": "robot",
+        "customData": "",
+        "window": "<generic>",
+        "remoteControl": "<none>",
+    },
+    flags={**_SOLID.flags, "supervisor": False, "synchronization": True, "selfCollision": False},
+    floats=_SOLID.floats | {"cpuConsumption"},
+    nodes=_SOLID.nodes,
+)
+_JOINT_PARAMETERS = DeclaredFields(
+    numbers={
+        "position": [0.0],
+        "axis": [0.0, 0.0, 1.0],
+        "minStop": [0.0],
+        "maxStop": [0.0],
+        "springConstant": [0.0],
+        "dampingConstant": [0.0],
+        "staticFriction": [0.0],
+    },
+    floats=frozenset(
+        {"position", "minStop", "maxStop", "springConstant", "dampingConstant", "staticFriction"}
+    ),
+)
+_HINGE_JOINT_PARAMETERS = DeclaredFields(
+    numbers={
+        **_JOINT_PARAMETERS.numbers,
+        "axis": [1.0, 0.0, 0.0],
+        "anchor": [0.0, 0.0, 0.0],
+        "suspensionSpringConstant": [0.0],
+        "suspensionDampingConstant": [0.0],
+        "suspensionAxis": [1.0, 0.0, 0.0],
+        "stopCFM": [-1.0],
+        "stopERP": [-1.0],
+    },
+    floats=_JOINT_PARAMETERS.floats
+    | {"suspensionSpringConstant", "suspensionDampingConstant", "stopCFM", "stopERP"},
+)
+_PHYSICS = DeclaredFields(
+    numbers={"density": [1000.0], "mass": [-1.0]},
+    floats=frozenset({"density", "mass"}),
+    nodes=frozenset({"damping"}),
+)
 _DECLARED = {
+    "Pose": _POSE,
+    "Transform": _TRANSFORM,
+    "Solid": _SOLID,
+    "Robot": _ROBOT,
+    "JointParameters": _JOINT_PARAMETERS,
+    "HingeJointParameters": _HINGE_JOINT_PARAMETERS,
+    "Physics": _PHYSICS,
     "PointLight": _POINT_LIGHT,
     "SpotLight": _SPOT_LIGHT,
     "DirectionalLight": _DIRECTIONAL_LIGHT,

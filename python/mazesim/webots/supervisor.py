@@ -528,8 +528,11 @@ class Node(NotSimulated):
                 types[name] = Field.SF_INT32
             if len(values) == 3 and name.lower().endswith("color"):
                 types[name] = Field.SF_COLOR
-        for name in declared_fields(self._type_name).floats & types.keys():
+        declared = declared_fields(self._type_name)
+        for name in declared.floats & types.keys():
             types[name] = Field.SF_FLOAT
+        for name in declared.nodes - types.keys():
+            types[name] = Field.SF_NODE  # empty where the file leaves it out
         # Every robot of the world has both, live, whatever its node writes (a project's PROTO
         # of the e-puck, unknown here as a Solid, may leave its rotation out).
         if self._live or self._translation is not None:
@@ -729,7 +732,22 @@ def _nest(
         kept = _nodes_of(fields, made, robot)
         node._adopt_fields(dict(zip(scene_node.nodes, kept)))
         singles.update(id(n) for n in kept)
-        pending.extend(reversed(list(zip([*kept, *inner], [*fields, *scene_node.children]))))
+        # The nodes of another robot's slot fields (a pendulum's joint in an E-puck's
+        # turretSlot): found by their DEF names with their fields, placed in the robot's frame.
+        slotted_scene = [n for listed in scene_node.slots.values() for n in listed]
+        slotted = _nodes_of(slotted_scene, made, robot)
+        for held_node in slotted:
+            held_node._parent = held_node._parent or node
+        pending.extend(
+            reversed(
+                list(
+                    zip(
+                        [*kept, *inner, *slotted],
+                        [*fields, *scene_node.children, *slotted_scene],
+                    )
+                )
+            )
+        )
     for index, node in enumerate(held):
         node._id = first_id + len(nested) + index
     return [*nested, *held]
