@@ -6,6 +6,11 @@ cases run in a child process under a 4 GiB address-space cap (see ``hostile.py``
 from __future__ import annotations
 
 import re
+import subprocess
+import sys
+import textwrap
+
+import pytest
 
 from hostile import run_hostile
 
@@ -128,3 +133,34 @@ def test_a_robot_list_nested_deep_is_refused_without_overflowing_the_stack() -> 
         assert "found a sequence" in outcome.stdout or "found a list" in outcome.stdout, (
             f"{call}: {outcome.stdout}"
         )
+
+
+#: The patterns that match a quoted string in a text a user gives (a .wbt, a PROTO, a TOML
+#: sweep file), by module and name.
+QUOTED_PATTERNS = [
+    ("mazesim.webots.proto.syntax", "_TOKEN"),
+    ("mazesim.webots.proto.expander", "_COMMENT"),
+    ("mazesim._toml", "_QUOTED"),
+]
+
+
+@pytest.mark.parametrize(("module", "name"), QUOTED_PATTERNS)
+def test_a_long_quoted_string_is_matched_in_memory_of_its_own_size(module: str, name: str) -> None:
+    # `"(?:[^"\\]|\\.)*"` kept about 120 bytes a character on the regex engine's stack: a .wbt of
+    # one 50 MB string (within the 256 MiB a world may have) took more than 5 GB. The unrolled
+    # pattern matches the same strings in constant memory: 10 MB within 400 MiB of heap.
+    code = textwrap.dedent(
+        f"""
+        import importlib, resource
+        pattern = getattr(importlib.import_module({module!r}), {name!r})
+        text = '"' + "x" * 10_000_000 + '"'
+        data = [int(line.split()[1]) << 10 for line in open("/proc/self/status")
+                if line.startswith("VmData")][0]
+        resource.setrlimit(resource.RLIMIT_DATA, (data + (400 << 20),) * 2)
+        print(pattern.match(text).end())
+        """
+    )
+    result = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, timeout=300, check=False
+    )
+    assert result.stdout.strip() == "10000002", result.stderr[-500:]

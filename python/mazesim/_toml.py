@@ -27,7 +27,7 @@ MAX_TOML_NESTING = 32
 _SPECIAL = re.compile(r"[\[\]{}\"'#\n]")
 
 #: A quoted part of a dotted key (its dots are the name's, not the key's).
-_QUOTED = re.compile(r'"(?:[^"\\]|\\.)*"|\'[^\']*\'')
+_QUOTED = re.compile(r'"[^"\\]*(?:\\.[^"\\]*)*"|\'[^\']*\'')
 
 
 def _string_end(text: str, index: int) -> int:

@@ -115,6 +115,41 @@ def test_an_action_that_is_not_two_numbers_names_the_agent(action: Any) -> None:
     assert f"expected the action of {env.agents[1]} to be two wheel speeds" in str(caught.value)
 
 
+@pytest.mark.parametrize("action", [[np.nan, 0.0], [0.0, np.inf], "fast", [1.0, 2.0, 3.0]])
+def test_the_aec_env_refuses_a_bad_action_at_its_agents_step_and_goes_on(action: Any) -> None:
+    """PettingZoo's parallel_to_aec held the actions until the last agent's step: a NaN of the
+    first agent was refused there, not naming it, and every later step raised until reset."""
+    env = maze_goals_v0.env(**OPTIONS)
+    env.reset(seed=0)
+    first = env.agent_selection
+    with pytest.raises(mazesim.InvalidActionError, match=f"the action of {first}"):
+        env.step(np.asarray(action) if not isinstance(action, str) else action)
+    assert env.agent_selection == first, "nothing was taken"
+    for _ in env.possible_agents:
+        env.step(np.zeros(2, np.float32))  # the env goes on with valid actions
+    assert env.agent_selection == first
+
+
+@pytest.mark.parametrize(
+    ("module", "option", "value"),
+    [
+        (maze_goals_v0, "step_penalty", float("nan")),
+        (maze_goals_v0, "collision_penalty", float("inf")),
+        (maze_goals_v0, "body_radius", -0.037),
+        (aggregation_v0, "arena_side", float("nan")),
+        (aggregation_v0, "arena_side", float("inf")),
+        (aggregation_v0, "arena_side", -5.0),
+    ],
+)
+def test_a_task_parameter_that_is_no_finite_number_is_refused_by_name(
+    module: Any, option: str, value: Any
+) -> None:
+    """NaN weights made every reward NaN; a NaN, infinite or negative arena was taken and reset
+    failed blaming the seed."""
+    with pytest.raises(mazesim.InvalidArgumentError, match=f"expected {option} to be a finite"):
+        module.parallel_env(**{option: value})
+
+
 def test_the_batch_steps_actions_in_fortran_order_as_in_c_order() -> None:
     """Fortran-ordered actions kept their order through the batch's clipping and were refused
     by the core as "not C-contiguous"."""

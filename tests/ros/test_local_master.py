@@ -8,6 +8,8 @@ import inspect
 import socket
 from pathlib import Path
 
+import pytest
+
 from mazesim.ros import local_master
 from mazesim.ros.local_master import LISTEN_PORTS, LocalMaster, free_loopback_port
 from ros_support import needs_ros
@@ -43,3 +45,15 @@ def test_the_master_s_waits_bound_a_hang_and_not_a_slow_start() -> None:
     for method in (LocalMaster.start, LocalMaster.wait_for_connections):
         default = inspect.signature(method).parameters["timeout"].default
         assert default == local_master.START_TIMEOUT_S >= 120.0, method
+
+
+@pytest.mark.parametrize("name", ["../escape", "a/b", "..", "", "x" * 201, "nul\x00"])
+def test_a_process_name_that_is_no_plain_file_name_is_refused(tmp_path: Path, name: str) -> None:
+    # spawn("../x") made or emptied x.log outside the master's home (/etc/x.log as root).
+    import mazesim
+
+    graph = LocalMaster(home=str(tmp_path / "home"))
+    with pytest.raises(mazesim.InvalidArgumentError, match="plain file name"):
+        graph.spawn(name, ["true"])
+    assert not (tmp_path / "escape.log").exists()
+    assert graph.log_path("bridge") == str(tmp_path / "home" / "bridge.log")

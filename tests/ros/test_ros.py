@@ -115,6 +115,13 @@ def test_bridge_settings_options_win_over_parameters() -> None:
         ("duration", -1.0),
         ("seed", 1.5),
         ("stop_at_goal", "maybe"),
+        # A parameter's range is the option's: 1e9 s held a command for 31 years; a speed of
+        # 1e-12 waited past the clock's range (an internal error); true was seed 1.
+        ("command_period", 1e9),
+        ("duration", 1e7),
+        ("speed", 1e-12),
+        ("seed", True),
+        ("noise", 7.5),
     ],
 )
 def test_bad_bridge_parameter_is_named(name: str, value: Any) -> None:
@@ -123,6 +130,18 @@ def test_bad_bridge_parameter_is_named(name: str, value: Any) -> None:
     refused = UnknownNameError if name == "mode" else InvalidArgumentError
     with pytest.raises(refused, match=f"parameter {name}"):
         resolve_settings(_Parameters(**{name: value}), {})
+
+
+def test_settings_are_written_back_as_the_parameter_server_holds_them() -> None:
+    # A seed of 3e9 (a valid seed) and a file name with a control character ended the bridge in
+    # an internal error when written back over XML-RPC (32-bit integers, XML text).
+    from mazesim.ros.bridge import xml_rpc_value
+
+    assert xml_rpc_value(3_000_000_000) == "3000000000"
+    settings = resolve_settings(_Parameters(seed="3000000000"), {})
+    assert settings.seed == 3_000_000_000, "read back as the number"
+    assert xml_rpc_value("/tmp/w\x01x.toml") is None
+    assert xml_rpc_value("arena") == "arena" and xml_rpc_value(7) == 7 and xml_rpc_value(True)
 
 
 def test_control_step_of_the_perform_learning_node_is_checked() -> None:

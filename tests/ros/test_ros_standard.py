@@ -58,6 +58,13 @@ def test_twist_beyond_the_motors_keeps_its_arc() -> None:
     assert left / right == pytest.approx(wanted_left / wanted_right)
     left, right = standard.twist_wheel_speeds(-5.0, 0.0, EPUCK)
     assert (left, right) == pytest.approx((-EPUCK.max_wheel_speed,) * 2)
+    # A huge finite twist overflowed into an infinite speed the limit scaled by 0 into NaN (a
+    # lost step in lockstep; the real-time bridge died): it keeps its arc too.
+    top = EPUCK.max_wheel_speed
+    assert standard.twist_wheel_speeds(1e307, 0.0, EPUCK) == pytest.approx((top, top))
+    assert standard.twist_wheel_speeds(-1e308, 0.0, EPUCK) == pytest.approx((-top, -top))
+    left, right = standard.twist_wheel_speeds(0.0, 1.7e308, EPUCK)
+    assert (left, right) == pytest.approx((-top, top))
 
 
 @pytest.mark.parametrize(("linear", "angular"), [(math.nan, 0.0), (0.0, math.inf)])

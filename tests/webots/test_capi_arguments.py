@@ -17,9 +17,9 @@ pytestmark = [NEEDS_COMPILERS, pytest.mark.usefixtures("own_cache")]
 
 INCLUDES = "".join(
     f"#include <{name}.h>\n"
-    for name in ("math", "stdio", "stdlib", "webots/robot", "webots/device", "webots/emitter",
-                 "webots/receiver", "webots/motor", "webots/distance_sensor", "webots/camera",
-                 "webots/led", "webots/supervisor")
+    for name in ("math", "stdio", "stdlib", "string", "webots/robot", "webots/device",
+                 "webots/emitter", "webots/receiver", "webots/motor", "webots/distance_sensor",
+                 "webots/camera", "webots/led", "webots/supervisor")
 )  # fmt: skip
 
 
@@ -202,3 +202,19 @@ def test_a_step_after_the_one_that_returned_minus_1_ends_the_controller(
     assert out == ["over at call 17"], "16 steps of 32 ms in 0.5 s, then -1 once"
     assert (run.exit_status, run.error, run.stopped) == (0, "", False)
     assert err == []
+
+
+def test_a_device_name_is_quoted_short_and_on_one_line(
+    tmp_path: Path, capfd: pytest.CaptureFixture[str]
+) -> None:
+    # A 10 MB name holding a newline was written whole, over two lines.
+    run, _, err = run_c(
+        capfd,
+        tmp_path,
+        "  char *name = malloc(1000001);\n  memset(name, 'a', 1000000);\n  name[10] = '\\n';\n"
+        "  name[1000000] = 0;\n  wb_robot_get_device(name);\n  free(name);\n"
+        "  wb_robot_step(32);",
+    )
+    assert run.exit_status == 0, run.error
+    (line,) = [line for line in err if "device not found" in line]
+    assert line == 'Warning: "' + "a" * 10 + "?" + "a" * 189 + '..." device not found.'

@@ -371,3 +371,29 @@ def test_a_controller_that_breaks_its_link_is_reported_in_one_line(
     assert first["exit_status"] == 1
     assert said == error
     assert stderr.count("mazesim: ") == 2, stderr  # the import's line and the robot's
+
+
+def test_a_controller_leaving_a_thread_running_does_not_keep_the_command_alive(
+    tmp_path: Path,
+) -> None:
+    """A controller run in mazesim's own process that starts a thread (not a daemon) and
+    returns: the run's outputs were written, then Python waited for the thread at exit for
+    ever. The command ends with the run, saying so, as Webots ends a controller's process."""
+    controller = tmp_path / "spinner.py"
+    controller.write_text(
+        "import threading, time\nfrom controller import Robot\nr = Robot()\n"
+        "threading.Thread(target=lambda: time.sleep(10**6), name='server').start()\n"
+        "r.step(32)\n"
+    )
+    out = tmp_path / "run"
+    result = subprocess.run(
+        [sys.executable, "-m", "mazesim", "webots", "run", str(controller), "--seconds", "0.5"]
+        + ["--out", str(out), "--no-progress"],
+        capture_output=True,
+        text=True,
+        timeout=300,  # a ceiling: it waited for ever
+        check=False,
+    )
+    assert result.returncode == 0, result.stderr
+    assert "left 1 thread(s) running ('server')" in result.stderr
+    assert json.loads((out / "summary.json").read_text())["steps"] >= 1

@@ -368,11 +368,41 @@ def main(argv: Sequence[str] | None = None) -> int:
     """Runs the ``mazesim`` command.
 
     Args:
-        argv: The arguments after the program name; by default ``sys.argv[1:]``.
+        argv: The arguments after the program name; by default ``sys.argv[1:]`` (the command
+            line itself: a controller's threads left running then end with it).
 
     Returns:
         The exit code: 0 on success, 2 on an error (printed as one line on stderr), 130 on Ctrl-C.
     """
+    code = _main(argv)
+    if argv is None:
+        _end_without_controller_threads(code)
+    return code
+
+
+def _end_without_controller_threads(code: int) -> None:
+    """Ends the process now, with ``code``, when a controller run in it left threads running
+    (``mazesim.webots.runner.LEFT_RUNNING``): Python would wait for them at exit for ever, where
+    Webots ends a controller's process with its run. Its outputs are written already."""
+    runner = sys.modules.get("mazesim.webots.runner")
+    left = [t for t in getattr(runner, "LEFT_RUNNING", []) if t.is_alive()]
+    if not left:
+        return
+    names = ", ".join(_shown(thread.name) for thread in left[:5])
+    print(
+        f"mazesim: warning: the controller left {len(left)} thread(s) running ({names}); the "
+        "command ends without waiting for them, as Webots ends a controller's process with its "
+        "run (make such a thread a daemon, or end it when step() returns -1)",
+        file=sys.stderr,
+    )
+    for stream in (sys.stdout, sys.stderr):
+        with contextlib.suppress(Exception):
+            stream.flush()
+    os._exit(code)
+
+
+def _main(argv: Sequence[str] | None) -> int:
+    """:func:`main` but for the end of a controller's threads."""
     arguments = list(sys.argv[1:] if argv is None else argv)
     _printable_output()
     # No shell passes a NUL character (it ends a C string); from Python it would reach a path

@@ -15,7 +15,7 @@ from pettingzoo.utils.wrappers import OrderEnforcingWrapper
 from mazesim.envs.errors import ResetNeededError
 from mazesim.errors import InvalidArgumentError, UnknownNameError, _closest_name, _shown
 from mazesim.marl.batch import MultiRobotBatch
-from mazesim.marl.parallel import MultiRobotParallelEnv
+from mazesim.marl.parallel import MultiRobotParallelEnv, agent_action
 from mazesim.marl.tasks import MultiRobotTask
 
 __all__ = ["EntryPoints", "entry_points"]
@@ -118,6 +118,10 @@ class _OrderEnforcing(OrderEnforcingWrapper[Any, Any, Any]):
 
     def step(self, action: Any) -> None:
         self._reset_first("step")
+        agent = self.agent_selection
+        ended = self.terminations.get(agent, False) or self.truncations.get(agent, False)
+        if not ended:  # an ended agent steps with None, as PettingZoo's AEC loop gives it
+            agent_action(action, agent)  # refused now, naming the agent, not at the last one
         super().step(action)
 
     def observe(self, agent: Any) -> Any:

@@ -33,7 +33,7 @@ from mazesim.marl.render import SwarmRenderer
 from mazesim.marl.tasks import MultiRobotTask
 from mazesim.render.live import LiveView, shown_in
 
-__all__ = ["MultiRobotParallelEnv"]
+__all__ = ["MultiRobotParallelEnv", "agent_action"]
 
 Observation = npt.NDArray[np.float32]
 
@@ -45,6 +45,27 @@ HUMAN_MODE_HEADLESS_NOTICE = (
     'shown (render_mode="rgb_array" returns them as arrays). Nothing to do when PettingZoo\'s '
     "render_test made this env: it tries every render mode"
 )
+
+
+def agent_action(action: Any, agent: str) -> npt.NDArray[np.float32]:
+    """One agent's action as the two wheel speeds it sets: real numbers, finite, of shape (2,).
+    The one check of an action, of the parallel env's ``step`` and of the AEC env's, which
+    checks each as it is given (PettingZoo's ``parallel_to_aec`` holds the actions until the
+    last agent's, where a NaN was refused at another agent's step, not naming the agent).
+
+    Raises:
+        InvalidActionError: Not two finite real numbers.
+    """
+    checked = real_actions(action, f"the action of {agent}", "two wheel speeds (numbers)")
+    if checked.shape != (2,):
+        raise InvalidActionError(
+            f"expected the action of {agent} of shape (2,), found {checked.shape}"
+        )
+    if not np.isfinite(checked).all():
+        raise InvalidActionError(
+            f"expected the action of {agent} to be finite wheel speeds, found {checked.tolist()}"
+        )
+    return checked
 
 
 class MultiRobotParallelEnv(ParallelEnv[str, Observation, npt.NDArray[np.float32]]):
@@ -191,14 +212,7 @@ class MultiRobotParallelEnv(ParallelEnv[str, Observation, npt.NDArray[np.float32
         wheels = np.zeros((1, len(self.possible_agents), 2), np.float32)
         for i, agent in enumerate(self.possible_agents):
             if agent in self.agents:
-                action = real_actions(
-                    actions[agent], f"the action of {agent}", "two wheel speeds (numbers)"
-                )
-                if action.shape != (2,):
-                    raise InvalidActionError(
-                        f"expected the action of {agent} of shape (2,), found {action.shape}"
-                    )
-                wheels[0, i] = action
+                wheels[0, i] = agent_action(actions[agent], agent)
         observations, rewards, terminations, truncations, infos = self.batch.step(wheels)
         self._observations[...] = observations[0]
         live = self.agents

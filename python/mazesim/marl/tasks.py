@@ -25,6 +25,7 @@ it.
 from __future__ import annotations
 
 import math
+import numbers
 from dataclasses import dataclass
 from typing import Any
 
@@ -34,7 +35,7 @@ import numpy.typing as npt
 from mazesim._core import MazeLayout, World, generate_maze
 from mazesim._toml import dump_toml, load_toml
 from mazesim.envs.navigation import start_and_goal_cells
-from mazesim.errors import InvalidArgumentError
+from mazesim.errors import InvalidArgumentError, _shown
 from mazesim.maze import GoalDistance, PathDistanceTable
 
 #: The layout of the tasks' mazes: the default one, without barcode checkpoints.
@@ -42,6 +43,7 @@ _WITHOUT_CHECKPOINTS = MazeLayout(checkpoints=False)
 
 __all__ = [
     "AggregationTask",
+    "finite_number",
     "EpisodeDraw",
     "MazeGoalsTask",
     "MultiRobotTask",
@@ -60,6 +62,19 @@ TOUCH_SLACK = 0.001
 def agent_names(num_robots: int) -> list[str]:
     """The agents' names (and their robots' names in the world): ``epuck_0``, ``epuck_1``, ..."""
     return [f"epuck_{i}" for i in range(num_robots)]
+
+
+def finite_number(name: str, value: Any, positive: bool = False) -> float:
+    """A task parameter that is a number: finite (and above 0 with ``positive``), as a float.
+
+    Raises:
+        InvalidArgumentError: Another value.
+    """
+    real = isinstance(value, numbers.Real) and not isinstance(value, bool)
+    if not (real and math.isfinite(value) and (value > 0 or not positive)):
+        kind = "a finite number above 0" if positive else "a finite number"
+        raise InvalidArgumentError(f"expected {name} to be {kind}, found {_shown(value)}")
+    return float(value)
 
 
 @dataclass(frozen=True)
@@ -164,6 +179,7 @@ class MultiRobotTask:
     min_robots = 2
 
     def __init__(self, num_robots: int, max_cycles: int, body_radius: float) -> None:
+        body_radius = finite_number("body_radius", body_radius, positive=True)
         if not self.min_robots <= num_robots <= 64:
             raise InvalidArgumentError(
                 f"expected {self.min_robots} to 64 robots, found {num_robots}"
@@ -259,12 +275,13 @@ class MazeGoalsTask(MultiRobotTask):
                 f"({num_robots}), found {columns} x {rows}"
             )
         self.maze_size = (columns, rows)
-        self.loops = float(loops)
+        self.loops = finite_number("loops", loops)
         self.end_on_collision = end_on_collision
-        self.goal_reward = goal_reward
-        self.collision_penalty = collision_penalty
-        self.progress_reward = progress_reward
-        self.step_penalty = step_penalty
+        # NaN or infinite weights made every reward NaN.
+        self.goal_reward = finite_number("goal_reward", goal_reward)
+        self.collision_penalty = finite_number("collision_penalty", collision_penalty)
+        self.progress_reward = finite_number("progress_reward", progress_reward)
+        self.step_penalty = finite_number("step_penalty", step_penalty)
         self.bind(1)
 
     def bind(self, num_envs: int) -> None:
@@ -402,6 +419,8 @@ class AggregationTask(MultiRobotTask):
         body_radius: float = 0.037,
     ) -> None:
         super().__init__(num_robots, max_cycles, body_radius)
+        # A NaN, infinite or negative side was taken, and reset failed blaming the seed.
+        arena_side = finite_number("arena_side", arena_side, positive=True)
         free = (arena_side - 2 * body_radius) ** 2
         if free < 4.0 * num_robots * (2 * body_radius) ** 2:
             raise InvalidArgumentError(

@@ -96,11 +96,14 @@ __all__ = [
     "IDLE_CLOCK_AFTER_S",
     "IDLE_EXIT_STATUS",
     "MODES",
+    "MAX_SETTING_SECONDS",
+    "MIN_SPEED",
     "RESEND_S",
     "Bridge",
     "BridgeSettings",
     "refuse_several_robots",
     "run_bridge",
+    "xml_rpc_value",
 ]
 
 #: The bridge's modes.
@@ -112,6 +115,11 @@ IDLE_WARNING_S = 5.0
 GOAL_TOPIC = "move_base_simple/goal"
 #: Lockstep: seconds after a goal came, no command come, before the state goes out again.
 GOAL_GRACE_S = 0.5
+#: The most seconds a setting of seconds takes (duration, command period, deadline, idle
+#: timeout), as the command line's options take (``mazesim.cli._args.MAX_SECONDS``).
+MAX_SETTING_SECONDS = 1e6
+#: The slowest real-time factor (and 1 / it the fastest): a step's wait stays within the clock's.
+MIN_SPEED = 1e-6
 
 
 @dataclass
@@ -142,12 +150,23 @@ class BridgeSettings:
     idle_timeout: float = IDLE_TIMEOUT_S
 
     def validate(self) -> None:
-        """Raises InvalidArgumentError naming the first parameter that is out of range."""
+        """Raises InvalidArgumentError naming the first parameter that is out of range: the
+        same ranges whether a setting came from the command line or a ROS parameter (a
+        parameter of 1e9 s was taken where the option is refused)."""
         _known_name(self.mode, "parameter mode", tuple(MODES))
-        if not (math.isfinite(self.speed) and self.speed > 0.0):
+        if not (math.isfinite(self.speed) and MIN_SPEED <= self.speed <= 1.0 / MIN_SPEED):
+            # A factor of 1e-12 made a step's wait too long for the clock (an internal error).
             raise InvalidArgumentError(
-                f"expected parameter speed to be a positive factor; found {_shown(self.speed)}"
+                f"expected parameter speed to be a factor from {MIN_SPEED:g} to "
+                f"{1.0 / MIN_SPEED:g}; found {_shown(self.speed)}"
             )
+        for name in ("duration", "command_period", "command_deadline", "idle_timeout"):
+            seconds = getattr(self, name)
+            if math.isfinite(seconds) and seconds > MAX_SETTING_SECONDS:
+                raise InvalidArgumentError(
+                    f"expected parameter {name} to be at most {MAX_SETTING_SECONDS:g} seconds "
+                    f"(0: none); found {_shown(seconds)}"
+                )
         if not (math.isfinite(self.duration) and self.duration >= 0.0):
             raise InvalidArgumentError(
                 f"expected parameter duration to be seconds >= 0 (0: no limit); "
@@ -184,8 +203,28 @@ class BridgeSettings:
             )
 
 
+def xml_rpc_value(value: Any) -> Any:
+    """``value`` as the parameter server can hold it, to write a setting back: an integer beyond
+    XML-RPC's 32 bits (a seed of 3e9) as its digits, which the bridge reads back as the number;
+    None for a text XML cannot carry (a file name with a control character: left unwritten).
+    Written as they were, both ended the bridge in an internal error."""
+    if isinstance(value, int) and not isinstance(value, bool) and not -(2**31) <= value < 2**31:
+        return str(value)
+    if isinstance(value, str) and any(
+        (ord(c) < 0x20 and c not in "\t\n\r") or 0xD800 <= ord(c) <= 0xDFFF or c in "\ufffe\uffff"
+        for c in value
+    ):
+        return None
+    return value
+
+
 def _convert(name: str, value: Any, kind: type) -> Any:
-    """Converts a parameter value read from the ROS parameter server to the field's type."""
+    """Converts a parameter value read from the ROS parameter server to the field's type (a
+    ``true`` given for a number is refused: it was seed 1)."""
+    if kind in (int, float) and isinstance(value, bool):
+        raise InvalidArgumentError(
+            f"expected parameter {name} to be a {kind.__name__}; found {_shown(value)} (a bool)"
+        )
     try:
         if kind is bool:
             if isinstance(value, str):
@@ -194,7 +233,9 @@ def _convert(name: str, value: Any, kind: type) -> Any:
                 if value.strip().lower() in ("false", "0", "no"):
                     return False
                 raise ValueError(value)
-            return bool(value)
+            if isinstance(value, bool) or value in (0, 1):
+                return bool(value)
+            raise ValueError(value)  # 7 was noise on, as any number but 0
         if kind is int and isinstance(value, float) and not value.is_integer():
             raise ValueError(value)
         return kind(value)
@@ -576,7 +617,7 @@ class Bridge:
         """One step, and with ``command_period`` the further steps the command holds until the
         clock reaches the controller's next tick; then waits for its next command there
         (:class:`~mazesim.ros.lockstep.TimerHold`). Call with the lock held."""
-        while True:
+        while not self.stop.is_set():  # Ctrl-C ends a hold of 1e6 s too
             self.simulator.step(left, right)
             self.publish_state()
             if self._finished():
@@ -784,7 +825,9 @@ def run_bridge(
     try:
         settings = resolve_settings(rospy, options)
         for field in fields(BridgeSettings):
-            rospy.set_param("~" + field.name, getattr(settings, field.name))
+            echoed = xml_rpc_value(getattr(settings, field.name))
+            if echoed is not None:
+                rospy.set_param("~" + field.name, echoed)
         world = mazesim.load_world(settings.world)
         several = len(world.robots) > 1
         if several:

@@ -29,7 +29,7 @@ from collections.abc import Sequence
 from typing import Any
 
 from mazesim._closing import Closing
-from mazesim.errors import MazesimError, MissingDependencyError
+from mazesim.errors import InvalidArgumentError, MazesimError, MissingDependencyError, _shown
 
 __all__ = ["LocalMaster", "free_loopback_port", "processes_with"]
 
@@ -166,7 +166,24 @@ class LocalMaster(Closing):
         return self
 
     def log_path(self, name: str) -> str:
-        """The file that receives the standard output and error of the process ``name``."""
+        """The file that receives the standard output and error of the process ``name``, in
+        :attr:`home`.
+
+        Raises:
+            InvalidArgumentError: ``name`` is no plain file name (``../x`` made or emptied a
+                log file outside the master's home).
+        """
+        plain = (
+            isinstance(name, str)
+            and 0 < len(name) <= 200
+            and name not in (".", "..")
+            and not any(c in name for c in "/\\\x00")
+        )
+        if not plain:
+            raise InvalidArgumentError(
+                "expected a process name that is a plain file name (no '/', '\\', '..' or "
+                f"NUL, at most 200 characters), found {_shown(name)}"
+            )
         return os.path.join(self.home, f"{name}.log")
 
     def start(self, timeout: float = START_TIMEOUT_S) -> None:

@@ -199,6 +199,17 @@ def twist_wheel_speeds(linear: float, angular: float, robot: RobotProfile) -> tu
     half_axle = robot.axle_length / 2.0
     left = (linear - angular * half_axle) / robot.wheel_radius
     right = (linear + angular * half_axle) / robot.wheel_radius
+    if not (math.isfinite(left) and math.isfinite(right)):
+        # A huge finite twist (1e307 m/s) overflows: the same arc from the twist scaled down
+        # (the limit scaled an infinite speed by 0 into NaN, and the step was lost).
+        size = max(abs(linear), abs(angular * half_axle))
+        left = (linear / size - angular * half_axle / size) / robot.wheel_radius
+        right = (linear / size + angular * half_axle / size) / robot.wheel_radius
+        fastest = max(abs(left), abs(right))
+        return (
+            left / fastest * robot.max_wheel_speed,
+            right / fastest * robot.max_wheel_speed,
+        )
     fastest = max(abs(left), abs(right))
     if fastest > robot.max_wheel_speed:
         scale = robot.max_wheel_speed / fastest

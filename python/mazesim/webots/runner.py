@@ -12,6 +12,7 @@ import contextlib
 import io
 import os
 import sys
+import threading
 import time
 import tokenize
 import traceback
@@ -225,6 +226,13 @@ def _read_source(path: str) -> str:
         ) from None
 
 
+#: The threads a controller run in this process started and left running, not daemons (a socket
+#: server's, a GUI's): Python would wait for them at exit, and the command never ended. Webots
+#: ends a controller's process with its run; the command ends without them
+#: (:func:`mazesim.cli.main`).
+LEFT_RUNNING: list[threading.Thread] = []
+
+
 def run_controller(
     path: str | os.PathLike[str],
     world: World,
@@ -330,11 +338,17 @@ def run_controller(
         os.chdir(folder)
         # Compiled with its real file name, so that tracebacks show its own lines.
         code = compile(source, "<botstudio>" if source is BOTSTUDIO_PROGRAM else file, "exec")
+        running = set(threading.enumerate())
         try:
             watchdog.start()
             with users_code():
                 exec(code, {"__name__": "__main__", "__file__": file, "__builtins__": __builtins__})
         finally:
+            LEFT_RUNNING.extend(
+                thread
+                for thread in threading.enumerate()
+                if thread not in running and thread.is_alive() and not thread.daemon
+            )
             try:
                 watchdog.stop()
             finally:

@@ -53,7 +53,7 @@ CORE_TYPES = frozenset(
 VISUAL_FIELDS = frozenset({"appearance", "material", "texture", "textureTransform"})
 #: A node type before its body (a word then ``{``), and comments to leave out before looking.
 _NODE_TYPE = re.compile(r"(?<![\w-])([A-Za-z_][\w-]*)\s*\{")
-_COMMENT = re.compile(r'"(?:[^"\\\n]|\\.)*"|#[^\n]*')
+_COMMENT = re.compile(r'"[^"\\\n]*(?:\\.[^"\\\n]*)*"|#[^\n]*')
 _HIDDEN_LINE = re.compile(r"^[ \t]*hidden[ \t][^\n]*$", re.MULTILINE)
 #: Deepest nesting of PROTOs in PROTOs (a PROTO that uses itself stops here).
 MAX_NESTING = 24

@@ -36,7 +36,7 @@ __all__ = [
 #: A token, a comment or (alone) a quote that opens a string never closed; white space, commas
 #: and byte-order marks are what lies between.
 _TOKEN = re.compile(
-    r'(?P<string>"(?:[^"\\]|\\.)*")|(?P<punct>[{}\[\]])|(?P<word>[^\s,"#{}\[\]\ufeff][^\s,"#{}\[\]]*)'
+    r'(?P<string>"[^"\\]*(?:\\.[^"\\]*)*")|(?P<punct>[{}\[\]])|(?P<word>[^\s,"#{}\[\]\ufeff][^\s,"#{}\[\]]*)'
     r'|(?P<comment>#[^\n\r]*)|(?P<unclosed>")',
     re.DOTALL,
 )

@@ -398,6 +398,23 @@ void wb_robot_set_mode(WbRobotMode mode, const char *argument) {
     fprintf(stderr, "Error: wb_robot_set_mode(): mazesim simulates only (mode %d ignored).\n", mode);
 }
 
+/* How a message quotes a text of the controller's (a device name): at most 200 characters on
+   one line, a control character as '?', "..." after a text cut short (a 10 MB name was written
+   whole, over several lines). */
+static const char *shown_text(const char *text) {
+  static char shown[204];
+  size_t n = 0;
+  while (text[n] && n < 200) {
+    unsigned char c = (unsigned char)text[n];
+    shown[n] = (c < 0x20 || c == 0x7f) ? '?' : (char)c;
+    n++;
+  }
+  if (text[n])
+    memcpy(shown + n, "...", 3), n += 3;
+  shown[n] = '\0';
+  return shown;
+}
+
 WbDeviceTag wb_robot_get_device(const char *name) {
   if (!name || !name[0]) {
     link_error("wb_robot_get_device", "() called with NULL or empty argument.");
@@ -407,7 +424,7 @@ WbDeviceTag wb_robot_get_device(const char *name) {
   for (int i = 0; i < link_robot.device_count; i++)
     if (strcmp(link_robot.devices[i].name, name) == 0)
       return (WbDeviceTag)(i + 1);
-  fprintf(stderr, "Warning: \"%s\" device not found.\n", name);
+  fprintf(stderr, "Warning: \"%s\" device not found.\n", shown_text(name));
   return 0;
 }
 
