@@ -330,6 +330,7 @@ def run_controller(
     status, error = 0, ""
     watchdog = termination.Watchdog(simulation, controller_module.ControllerStopped, stall_seconds)
     streams = _standard_streams()
+    running = set(threading.enumerate())
     display = contextlib.ExitStack()
     try:
         if prepared.virtual_display:
@@ -338,17 +339,11 @@ def run_controller(
         os.chdir(folder)
         # Compiled with its real file name, so that tracebacks show its own lines.
         code = compile(source, "<botstudio>" if source is BOTSTUDIO_PROGRAM else file, "exec")
-        running = set(threading.enumerate())
         try:
             watchdog.start()
             with users_code():
                 exec(code, {"__name__": "__main__", "__file__": file, "__builtins__": __builtins__})
         finally:
-            LEFT_RUNNING.extend(
-                thread
-                for thread in threading.enumerate()
-                if thread not in running and thread.is_alive() and not thread.daemon
-            )
             try:
                 watchdog.stop()
             finally:
@@ -364,6 +359,13 @@ def run_controller(
         status = EXIT_CONTROLLER_ERROR
         error = _controller_traceback(failure)
     finally:
+        # Once the controller's code is unwound (no line of this module runs under its stop),
+        # however it ended.
+        LEFT_RUNNING.extend(
+            thread
+            for thread in threading.enumerate()
+            if thread not in running and thread.is_alive() and not thread.daemon
+        )
         _reopen_closed(streams)
         display.close()
         if saved_home is None:
