@@ -1,11 +1,8 @@
 use super::*;
 use crate::world::World;
 
-fn corridor(gap: f64) -> Arc<World> {
-    // Two e-pucks facing each other in a corridor 0.2 m wide, centres 2 * 0.037 + gap apart.
-    let half = 0.037 + gap / 2.0;
-    let text = format!(
-        r#"format = "mazesim-world"
+/// A corridor 0.2 m wide between two walls 1 m long, without robots (a world's text).
+const CORRIDOR: &str = r#"format = "mazesim-world"
 version = 1
 name = "corridor"
 
@@ -16,7 +13,13 @@ size = [1.0, 0.01]
 [[walls]]
 center = [0.0, -0.105]
 size = [1.0, 0.01]
+"#;
 
+fn corridor(gap: f64) -> Arc<World> {
+    // Two e-pucks facing each other in a corridor 0.2 m wide, centres 2 * 0.037 + gap apart.
+    let half = 0.037 + gap / 2.0;
+    let text = format!(
+        r#"{CORRIDOR}
 [[robots]]
 name = "west"
 x = {}
@@ -838,18 +841,8 @@ fn a_pose_a_few_millimetres_into_a_wall_is_pushed_out_clear_of_it_and_of_other_r
 fn a_larger_robot_is_checked_at_its_own_start_not_at_the_first_robots() {
     // The first e-puck starts 3 mm from the corridor's wall; a robot of radius 0.064 m fits at
     // its own start in the middle but not at the e-puck's: it was checked there and refused.
-    let text = r#"format = "mazesim-world"
-version = 1
-name = "mixed"
-
-[[walls]]
-center = [0.0, 0.105]
-size = [1.0, 0.01]
-
-[[walls]]
-center = [0.0, -0.105]
-size = [1.0, 0.01]
-
+    let text = format!(
+        r#"{CORRIDOR}
 [[robots]]
 name = "corner"
 x = -0.3
@@ -861,8 +854,9 @@ name = "big"
 x = 0.2
 y = 0.0
 yaw = 0.0
-"#;
-    let world = Arc::new(World::from_toml(text, "mixed").unwrap());
+"#
+    );
+    let world = Arc::new(World::from_toml(&text, "mixed").unwrap());
     let mut big = RobotProfile::builtin("e-puck").unwrap();
     big.body_radius = 0.064;
     let profiles = [None, Some(Arc::new(big))];
