@@ -29,7 +29,14 @@ from mazesim.errors import (
 )
 from mazesim.webots import simulation as _simulations
 from mazesim.webots.devices import _print_error
-from mazesim.webots.frames import enu_to_nue, nue_to_enu, rotation_matrix
+from mazesim.webots.frames import (
+    axis_angle,
+    enu_to_nue,
+    heading_of,
+    nue_to_enu,
+    rotation_matrix,
+    turned,
+)
 from mazesim.webots.importer import MAX_WORLD_BYTES
 from mazesim.webots.webots_api import NotSimulated, webots_property
 
@@ -274,12 +281,17 @@ class Field(NotSimulated):
 
     def c_sf_rotation(self) -> list[float] | None:
         """The node's rotation as axis and angle (the robot's is live: [0, 0, 1, yaw], the yaw in
-        (-pi, pi], so that a half turn set reads back as the half turn, not as -pi)."""
+        (-pi, pi], so that a half turn set reads back as the half turn, not as -pi; a robot
+        stood upright by its ``rotation`` reads ``Rz(yaw) T``, T its body's turn)."""
         if self._name != "rotation":
             self._wrong("get_sf_rotation")
             return None
         node = self._node
-        live = [0.0, 0.0, 1.0, _half_open(node._field_pose()[2])] if node._live else None
+        live = None
+        if node._live:
+            yaw = _half_open(node._field_pose()[2])
+            turn = node._body_turn()
+            live = [0.0, 0.0, 1.0, yaw] if turn is None else list(axis_angle(turned(yaw, turn)))
         rotation = live or list(node._rotation or ())
         return [*_out(rotation[:3]), rotation[3]] if rotation else rotation
 
@@ -295,7 +307,8 @@ class Field(NotSimulated):
         ax, ay, az = _in([ax, ay, az])
         if node._live:
             x, y, _ = node._field_pose()
-            node._set_field_pose(x, y, _yaw_of_rotation([ax, ay, az, angle]))
+            yaw = heading_of(rotation_matrix(ax, ay, az, angle), node._body_turn())
+            node._set_field_pose(x, y, yaw)
         else:
             node._place(rotation=(ax, ay, az, angle))
             node._tell_field("rotation", [float(v) for v in rotation])
@@ -455,7 +468,8 @@ class Field(NotSimulated):
 
     def getSFRotation(self) -> Any:
         """The field's value, read by its own type (see :attr:`value`): a rotation as axis and
-        angle (the robot's is live: [0, 0, 1, yaw])."""
+        angle (the robot's is live: [0, 0, 1, yaw], or ``Rz(yaw) T`` for a robot stood upright
+        by its ``rotation``, :func:`~mazesim.webots.frames.body_turn`)."""
         return self.value
 
     def getSFColor(self) -> Any:

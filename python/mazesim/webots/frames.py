@@ -21,12 +21,15 @@ __all__ = [
     "Frame",
     "axes_or_none",
     "axis_angle",
+    "body_turn",
     "camera_heading",
+    "heading_of",
     "enu_to_nue",
     "enu_to_nue_matrix",
     "nue_to_enu",
     "placed",
     "rotation_matrix",
+    "turned",
 ]
 
 #: The matrix of :func:`enu_to_nue` (rows).
@@ -90,6 +93,45 @@ def camera_heading(forward: Sequence[float]) -> tuple[float, float]:
     norm = math.sqrt(fx * fx + fy * fy + fz * fz) or 1.0
     heading = math.atan2(fy, fx) if math.hypot(fx, fy) > 1e-12 else 0.0
     return heading, math.asin(max(-1.0, min(1.0, -fz / norm)))
+
+
+def body_turn(y_up: bool, nue: bool) -> list[float]:
+    """The rotation matrix (row after row) taking a robot node's own frame, as the import
+    reads the file (an NUE file's axes turned to ENU by :func:`nue_to_enu`), to the robot's
+    frame at heading 0 (x forward, y left, z up): none for a Z-up body in an ENU file; for a
+    body built Y-up (``y_up``: forward its local -z, up its local y) the turn that stands it
+    upright; in an NUE file (``nue``) after the turn back to the file's own axes, so that a Z-up
+    E-puck stood up in such a file by ``rotation 1 0 0 -1.5708`` reads that rotation. A robot
+    at heading ``a`` is turned ``Rz(a) T`` (T this matrix), as Webots' ``rotation`` field and
+    ``getOrientation`` give it."""
+    columns = []
+    for j in range(3):
+        axis = tuple(1.0 if k == j else 0.0 for k in range(3))
+        if nue:
+            axis = enu_to_nue(*axis)
+        if y_up:
+            axis = nue_to_enu(*axis)
+        columns.append(axis)
+    return [columns[j][i] for i in range(3) for j in range(3)]
+
+
+def heading_of(matrix: Sequence[float], turn: Sequence[float] | None = None) -> float:
+    """The heading (rad, counter-clockwise from x) of a node turned by ``matrix`` (row after
+    row): where its forward points, the x axis of the robot's frame that ``turn`` (a
+    :func:`body_turn`; none by default) takes its own frame to."""
+    # The forward axis in the node's own frame is T^T x: the first row of T.
+    forward = turn[0:3] if turn is not None else (1.0, 0.0, 0.0)
+    x = sum(matrix[k] * forward[k] for k in range(3))
+    y = sum(matrix[3 + k] * forward[k] for k in range(3))
+    return math.atan2(y, x)
+
+
+def turned(yaw: float, turn: Sequence[float]) -> list[float]:
+    """``Rz(yaw) T``, row after row: a robot at heading ``yaw`` whose :func:`body_turn` is
+    ``turn``."""
+    c, s = math.cos(yaw), math.sin(yaw)
+    rows = ((c, -s, 0.0), (s, c, 0.0), (0.0, 0.0, 1.0))
+    return [sum(rows[i][k] * turn[3 * k + j] for k in range(3)) for i in range(3) for j in range(3)]
 
 
 def axis_angle(matrix: Sequence[float]) -> tuple[float, float, float, float]:

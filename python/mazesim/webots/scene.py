@@ -484,8 +484,9 @@ def _scene(
     if (north := first_value(every, "northDirection", _leading(3))) is not None:
         x, y, z = north
         scene.north = nue_to_enu(x, y, z)[:2] if scene.nue else (x, y)
-    elif scene.y_up_devices:
-        # WorldInfo.northDirection's default before R2022a: x (1 0 0).
+    elif scene.nue:
+        # WorldInfo.northDirection's default before R2022a, and north in a later file of the
+        # NUE convention (coordinateSystem "NUE": x north, y up, z east): the file's x.
         scene.north = nue_to_enu(1.0, 0.0, 0.0)[:2]
     return scene
 

@@ -307,7 +307,7 @@ class InertialUnit(_TableVector):
         return None if self._simulation.scene.y_up_devices else self._tilted_axes()
 
     def _read(self) -> list[float]:
-        if self._simulation.scene.y_up_devices:
+        if self._simulation.scene.nue:
             return [self._table(v, self._rng) for v in self._nue_attitude()]
         tilted = self._tilt()
         if tilted is None:
@@ -329,9 +329,11 @@ class InertialUnit(_TableVector):
     def _nue_attitude(self) -> tuple[float, float, float]:
         """Roll, pitch and yaw in a world before R2022a (see the class notes)."""
         axes = self._mount.axes
-        if axes is None:  # level, its x axis at the mount's yaw (its y axis up)
-            c, s = math.cos(self._mount.yaw), math.sin(self._mount.yaw)
+        c, s = math.cos(self._mount.yaw), math.sin(self._mount.yaw)
+        if axes is None and self._y_up_frame():  # level, its x axis at the mount's yaw, y up
             axes = ((c, s, 0.0), (0.0, 0.0, 1.0), (s, -c, 0.0))
+        elif axes is None:  # level in a Z-up body
+            axes = ((c, s, 0.0), (-s, c, 0.0), (0.0, 0.0, 1.0))
         yaw = self._simulation.simulator.pose[2]
         c, s = math.cos(yaw), math.sin(yaw)
         x_axis, y_axis, z_axis = ((c * a[0] - s * a[1], s * a[0] + c * a[1], a[2]) for a in axes)
@@ -354,7 +356,7 @@ class InertialUnit(_TableVector):
         """The orientation as a quaternion [x, y, z, w] (of the rotation Rz(yaw) Ry(pitch)
         Rx(roll)); NaNs before the first sampling period."""
         roll, pitch, yaw = self.getRollPitchYaw()
-        if self._simulation.scene.y_up_devices:  # Ry(yaw) Rz(pitch) Rx(roll)
+        if self._simulation.scene.nue:  # Ry(yaw) Rz(pitch) Rx(roll)
             turns = ((1, yaw), (2, pitch), (0, roll))
             quaternion = [0.0, 0.0, 0.0, 1.0]
             for axis, angle in turns:

@@ -40,9 +40,13 @@ from mazesim.webots.field import (
 )
 from mazesim.webots.frames import (
     WORLD_FRAME,
+    axis_angle,
+    body_turn,
     enu_to_nue_matrix,
+    heading_of,
     placed,
     rotation_matrix,
+    turned,
 )
 from mazesim.webots.importer import E_PUCK_MODELS, own_build
 from mazesim.webots.inert import ContactPoint
@@ -242,7 +246,8 @@ class Node(NotSimulated):
         for node in reversed(chain):
             if node._live:
                 x, y, yaw = node._field_pose()
-                frame = placed(frame, (x, y, node._field_height()), (0.0, 0.0, 1.0, yaw))
+                turn = axis_angle(node._live_matrix(yaw))
+                frame = placed(frame, (x, y, node._field_height()), turn)
             else:
                 frame = placed(frame, node._translation or (0.0, 0.0, 0.0), node._rotation)
         return frame
@@ -310,9 +315,36 @@ class Node(NotSimulated):
         self._move(*composed(self._parent_planar(), (x, y, yaw)))
 
     def _planar(self) -> Pose2:
-        """The node's pose seen from above, composed through the nodes above it."""
+        """The node's pose seen from above, composed through the nodes above it (its heading
+        a robot's forward's)."""
         origin, matrix = self._world_frame()
-        return origin[0], origin[1], math.atan2(matrix[3], matrix[0])
+        return origin[0], origin[1], heading_of(matrix, self._body_turn() if self._live else None)
+
+    def _body_turn(self) -> list[float] | None:
+        """How a robot node's own frame turns to the robot's (x forward, y left, z up;
+        :func:`~mazesim.webots.frames.body_turn`): a body built Y-up, or a Z-up body in a
+        file of the NUE convention, stood upright by its ``rotation``. None for a node that
+        turns about the vertical alone (a robot of the file's own convention, a body it
+        holds)."""
+        simulation = self._simulation()
+        if self._robot:
+            y_up = simulation.scene.body_y_up
+        elif self._fleet_index is not None:
+            robots = simulation.report.get("robots") or []
+            if self._fleet_index >= len(robots):
+                return None
+            y_up = bool(robots[self._fleet_index].get("y_up", simulation.scene.y_up_devices))
+        else:
+            return None
+        if y_up == simulation.scene.nue:
+            return None
+        return body_turn(y_up, simulation.scene.nue)
+
+    def _live_matrix(self, yaw: float) -> list[float]:
+        """A live node's rotation matrix at heading ``yaw`` (row after row): ``Rz(yaw)``, turned
+        as :meth:`_body_turn` says."""
+        turn = self._body_turn()
+        return turned(yaw, turn) if turn is not None else rotation_matrix(0.0, 0.0, 1.0, yaw)
 
     def _move_held(self, before: Pose2, after: Pose2) -> bool:
         """Moves what the node holds by the motion from ``before`` to ``after``; False, with
@@ -571,7 +603,9 @@ class Node(NotSimulated):
         through theirs)."""
         if self._nested and not self._live:
             matrix = self._world_frame()[1]
-        elif self._live or self._rotation is None:
+        elif self._live:
+            matrix = self._live_matrix(self._pose()[2])
+        elif self._rotation is None:
             matrix = rotation_matrix(0.0, 0.0, 1.0, self._pose()[2])
         else:
             matrix = rotation_matrix(*self._rotation)
