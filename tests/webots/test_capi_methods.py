@@ -340,5 +340,5 @@ def test_c_and_cpp_controllers_read_lens_torque_tables_and_robot_as_python_does(
         "battery none 32",
         'type 34 urdf <robot name="my_e-puck">',
         "window none",
-        "feedback 0.000000 0",
+        "feedback 0.000000 32",
     ]

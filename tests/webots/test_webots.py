@@ -141,10 +141,28 @@ def test_motors_position_and_velocity_control(
     assert "negative 'velocity' argument in position control mode" in capsys.readouterr().err
 
 
+def test_torque_feedback_keeps_its_period_and_reads_nan_while_disabled(robot: Robot) -> None:
+    # Webots' motor.c keeps the period given and starts the feedback at NaN; no torque is
+    # simulated, so an enabled feedback reads 0.
+    motor = robot.getDevice("left wheel motor")
+    assert motor.getTorqueFeedbackSamplingPeriod() == 0
+    assert math.isnan(motor.getTorqueFeedback())
+    motor.enableTorqueFeedback(16)
+    assert motor.getTorqueFeedbackSamplingPeriod() == 16
+    assert motor.getForceFeedbackSamplingPeriod() == 16 and motor.getTorqueFeedback() == 0.0
+    motor.disableTorqueFeedback()
+    assert motor.getTorqueFeedbackSamplingPeriod() == 0
+
+
 def test_leds_keep_their_value(robot: Robot) -> None:
     led = robot.getDevice("led8")
     assert isinstance(led, LED) and led.get() == 0
     led.set(1)
+    assert led.get() == 1
+    # Webots' LED.set takes a bool too (Union[bool, int]): the usual led.set(ps > 80).
+    led.set(False)
+    assert led.get() == 0
+    led.value = True
     assert led.get() == 1
 
 

@@ -187,7 +187,9 @@ def test_a_camera_slower_than_the_step_is_black_until_its_first_image() -> None:
     assert drawn.max() > 200, "the lit floor beside the line"
 
 
-def test_camera_sees_a_wall_it_faces_and_saves_images(tmp_path: Path) -> None:
+def test_camera_sees_a_wall_it_faces_and_saves_images(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
     robot = make_robot("arena")
     simulation = simulations.current()
     simulation.move_robot(0.35, 0.0, 0.0)
@@ -203,6 +205,10 @@ def test_camera_sees_a_wall_it_faces_and_saves_images(tmp_path: Path) -> None:
     assert camera.saveImage(str(tmp_path / "view.png"), 100) == 0
     assert (tmp_path / "view.png").read_bytes()[:4] == b"\x89PNG"
     assert camera.saveImage(str(tmp_path / "view.bmp"), 100) == -1
+    # Webots' camera.c's words.
+    assert "called with unsupported image format (should be PNG or JPEG)" in (
+        capsys.readouterr().err
+    )
 
 
 def test_light_sensors_accelerometer_and_gyro() -> None:

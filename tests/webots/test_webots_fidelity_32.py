@@ -168,7 +168,8 @@ def test_no_reading_is_partly_nan_before_the_first_step(tmp_path: Path) -> None:
     (Webots creates each kept reading NaN whole; a list of zeros is an image Webots keeps
     zero-filled, a lidar's and a range finder's). The readings the reference manual gives
     per sensor are NaN throughout. A getter of one number answers NaN only for a reading
-    (``getValue``, the GPS's ``getSpeed``, the signal strength of an empty receiver queue),
+    (``getValue``, the GPS's ``getSpeed``, the signal strength of an empty receiver queue, a
+    motor's torque feedback never enabled, NaN in Webots' motor.c),
     never for what the node's fields give: a Lidar's ``getMinFrequency`` and
     ``getMaxFrequency`` are its ``minFrequency`` and ``maxFrequency`` (1 Hz by default,
     reference manual, Lidar; the world sets 20 Hz)."""
@@ -187,7 +188,7 @@ def test_no_reading_is_partly_nan_before_the_first_step(tmp_path: Path) -> None:
         "gyro.getValues",
     ]:
         assert lists[name] and all(lists[name]), name
-    readings = ("getValue", "getSpeed", "getSignalStrength")
+    readings = ("getValue", "getSpeed", "getSignalStrength", "Feedback")
     assert [n for n in logs["every_reading"]["nan_numbers"] if not n.endswith(readings)] == []
     assert "gps.getSpeed" in logs["every_reading"]["nan_numbers"]
     assert logs["every_reading"]["lidar_frequencies"] == [1.0, 20.0]

@@ -7,8 +7,10 @@ import struct
 from collections.abc import Iterator
 from typing import Any
 
+import numpy as np
 import pytest
 
+import mazesim
 from mazesim.webots import controller, prepare
 from mazesim.webots import simulation as simulations
 from mazesim.webots.importer import import_wbt_text
@@ -117,10 +119,6 @@ def test_a_packet_sent_before_a_step_is_in_the_queue_after_it() -> None:
 def test_a_packet_of_another_type_is_refused_naming_the_kinds_sent() -> None:
     """``send`` takes str, bytes or a sequence of numbers (a numpy array too); anything else is
     a WrongTypeError naming what was found, not a TypeError from inside the packing."""
-    import numpy as np
-
-    import mazesim
-
     pair = RadioPair()
     emitter = Emitter("emitter", pair.robots[0])
     for bad, found in ((None, "found None"), (12, "found an int"), (["a"], "found a list")):
@@ -130,14 +128,20 @@ def test_a_packet_of_another_type_is_refused_naming_the_kinds_sent() -> None:
     assert emitter.send(np.array([1.0, 2.0], dtype=np.float32)) == 1
 
 
-def test_a_list_of_numbers_is_read_back_as_floats_ints_or_bools() -> None:
-    """Webots' Python Receiver reads a packet as doubles (``getFloats``, what ``Emitter.send``
-    of a list of numbers sends), 4-byte ints (``getInts``) or booleans (``getBools``)."""
+def _listening_pair() -> tuple[RadioPair, Emitter, Receiver]:
+    """Two robots, the first's emitter and the second's receiver, enabled."""
     pair = RadioPair()
     emitter = Emitter("emitter", pair.robots[0])
     receiver = Receiver("receiver", pair.robots[1])
     pair.receivers.append(receiver)
     receiver.enable(int(pair.robots[1].basic_time_step_ms))
+    return pair, emitter, receiver
+
+
+def test_a_list_of_numbers_is_read_back_as_floats_ints_or_bools() -> None:
+    """Webots' Python Receiver reads a packet as doubles (``getFloats``, what ``Emitter.send``
+    of a list of numbers sends), 4-byte ints (``getInts``) or booleans (``getBools``)."""
+    pair, emitter, receiver = _listening_pair()
     emitter.send([7.0, 1.0, 0.25])
     emitter.send(struct.pack("3i", 7, -1, 2))
     emitter.send(bytes([1, 0]))
@@ -149,6 +153,28 @@ def test_a_list_of_numbers_is_read_back_as_floats_ints_or_bools() -> None:
     assert receiver.getBools() == (True, False)
     receiver.nextPacket()
     assert receiver.getFloats() is None
+
+
+def test_a_list_packs_as_its_first_item_chooses_as_webots_python_does() -> None:
+    """Webots' emitter.py (R2024a on) packs a list by its first item: doubles for a float,
+    4-byte ints for an int or a bool, so ``send([1, 2, 3])`` is 12 bytes ``getInts`` reads."""
+    pair, emitter, receiver = _listening_pair()
+    emitter.send([1, 2, 3])
+    emitter.send((True, False))
+    emitter.send([0.5, 2])
+    emitter.send(np.array([4, 5], dtype=np.int64))
+    pair.step()
+    sizes_and_ints = []
+    for _ in range(4):
+        sizes_and_ints.append((receiver.getDataSize(), receiver.getInts()))
+        receiver.nextPacket()
+    assert sizes_and_ints[0] == (12, (1, 2, 3))
+    assert sizes_and_ints[1] == (8, (1, 0))
+    assert sizes_and_ints[2][0] == 16
+    assert sizes_and_ints[3] == (8, (4, 5))
+    # An int first and a float after: struct refuses it in Webots too.
+    with pytest.raises(mazesim.WrongTypeError, match="ints"):
+        emitter.send([1, 2.5])
 
 
 def test_the_sampling_period_holds_packets_until_it_ends(

@@ -97,6 +97,50 @@ def test_grouping_nodes_list_their_children_as_the_file_gives_them(tmp_path: Pat
     assert all(supervisor.getFromId(n.getId()) is n for n in (box, mark, inner))
 
 
+def test_a_dotted_def_path_finds_a_node_inside_another(tmp_path: Path) -> None:
+    # Webots' reference manual, wb_supervisor_node_get_from_def: dots are "a scoping operator
+    # in the DEF parameter" ("ROBOT.JOINT.SOLID").
+    supervisor = supervisor_of(GROUPED, tmp_path)
+    mark = supervisor.getFromDef("OBSTACLES.BOX1.MARK")
+    assert mark is not None and mark.getTypeName() == "Pose" and mark.getDef() == "MARK"
+    assert mark == supervisor.getFromDef("MARK")
+    assert supervisor.getFromDef("OBSTACLES.MARK") == mark, "any depth inside"
+    assert supervisor.getFromDef("BOX1.OBSTACLES") is None, "the scope is inside the first"
+    for missing in ("OBSTACLES.NOPE", "NOPE.BOX1", "OBSTACLES..BOX1", "OBSTACLES."):
+        assert supervisor.getFromDef(missing) is None, missing
+
+
+def test_world_info_and_the_e_puck_have_the_fields_webots_declares(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    # Webots' reference manual, WorldInfo (basicTimeStep an SFFloat, whole or not), and
+    # E-puck.proto's declared fields at their defaults where the file leaves them out.
+    supervisor = supervisor_of(GROUPED, tmp_path)
+    top = supervisor.getRoot().getField("children")
+    info = top.getMFNode(0)
+    assert info.getTypeName() == "WorldInfo"
+    step = info.getField("basicTimeStep")
+    assert step.getTypeName() == "SFFloat" and step.getSFFloat() == 32.0
+    assert info.getField("FPS").getSFFloat() == 60.0
+    assert info.getField("gravity").getTypeName() == "SFFloat"
+    assert info.getField("randomSeed").getTypeName() == "SFInt32"
+    assert info.getField("coordinateSystem").getSFString() == "ENU"
+    puck = supervisor.getFromDef("EPUCK")
+    assert puck.getField("camera_rotation").getSFRotation() == [0.0, 0.0, 1.0, 0.0]
+    assert puck.getField("camera_noise").getTypeName() == "SFFloat"
+    assert puck.getField("camera_antiAliasing").getSFBool() is False
+    # A loop over a node's fields by index reads each field once.
+    for node in (info, puck):
+        count = node.getNumberOfFields()
+        names = [node.getFieldByIndex(i).getName() for i in range(count)]
+        assert len(set(names)) == count > 10, names
+        for name in names:
+            assert node.getField(name) is not None, name
+        capsys.readouterr()
+        assert node.getFieldByIndex(count) is None
+        assert "out of range" in capsys.readouterr().err
+
+
 def test_a_node_inside_another_records_what_is_set(tmp_path: Path) -> None:
     supervisor = supervisor_of(GROUPED, tmp_path)
     box = supervisor.getFromDef("BOX1")

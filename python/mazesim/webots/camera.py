@@ -982,7 +982,14 @@ class Camera(_Sensor):
             )
         pixels = self._drawn()
         extension = os.path.splitext(filename)[1].lower()
-        if pixels is None or extension not in (".png", ".jpg", ".jpeg"):
+        if extension not in (".png", ".jpg", ".jpeg"):
+            # Webots' camera.c, word for word.
+            _print_error(
+                "Error: wb_camera_save_image() called with unsupported image format (should be "
+                "PNG or JPEG)."
+            )
+            return -1
+        if pixels is None:
             _print_error(f"Error: wb_camera_save_image() cannot save {_shown(filename)}.")
             return -1
         rgb = np.ascontiguousarray(pixels[:, :, 2::-1])

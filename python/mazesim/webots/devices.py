@@ -668,6 +668,8 @@ class Motor(Device):
         #: The torque the motor may use (N m): its ``maxTorque`` until the controller sets
         #: another; with none it does not drive (:meth:`setAvailableTorque`).
         self._available_torque = self._max_torque = MAX_TORQUE
+        #: The torque feedback's sampling period (ms; 0: disabled).
+        self._feedback_period = 0
 
     def _restart(self) -> None:
         """As Webots' reset does (WbMotor::reset): position control again, at the joint's
@@ -830,19 +832,24 @@ class Motor(Device):
     getMaxForce = getMaxTorque
 
     def enableTorqueFeedback(self, samplingPeriod: int) -> None:
-        """Accepted; the feedback reads 0."""
-        sampling_period(samplingPeriod, "wb_motor_enable_torque_feedback")
+        """Enables the torque feedback (0 disables it); it reads 0 N m, as no torque is
+        simulated."""
+        period = sampling_period(samplingPeriod, "wb_motor_enable_torque_feedback")
+        if period is not None:
+            self._feedback_period = period
 
     def disableTorqueFeedback(self) -> None:
-        """Accepted."""
+        """Disables the torque feedback."""
+        self._feedback_period = 0
 
     def getTorqueFeedback(self) -> float:
-        """0: no torque is simulated."""
-        return 0.0
+        """0 while enabled (no torque is simulated); NaN while disabled, Webots' value of a
+        feedback never sampled."""
+        return 0.0 if self._feedback_period else math.nan
 
     def getTorqueFeedbackSamplingPeriod(self) -> int:
-        """0."""
-        return 0
+        """The period given to :meth:`enableTorqueFeedback` (ms), 0 when disabled."""
+        return self._feedback_period
 
     enableForceFeedback = enableTorqueFeedback
     disableForceFeedback = disableTorqueFeedback
@@ -897,8 +904,9 @@ class LED(Device):
         super().__init__(name, simulation)
         self._value = 0
 
-    def set(self, value: int) -> None:
-        """Switches the LED on (non-zero) or off (0)."""
+    def set(self, value: bool | int) -> None:
+        """Switches the LED on (non-zero, True) or off (0, False): Webots' ``LED.set`` takes a
+        bool too (``Union[bool, int]``), as ``led.set(ps0.getValue() > 80)`` writes it."""
         self._value = int(value)
 
     def get(self) -> int:

@@ -492,13 +492,13 @@ _KINDS = {-2: "a str", -1: "a bool", 0: "an int of 32 bits", 1: "a finite number
 def field_value(value: Any, count: int, function: str) -> Any:
     """The value a field setter ``function`` (``"Field.setSFVec3f"``) was given, checked
     against what the field holds: the one check of every setter of :class:`Field`. ``count``
-    says what it takes: -2 a text, -1 a bool, 0 an integer of 32 bits, 1 a number, else a list
-    or tuple of at most ``count``
-    finite numbers, of which missing ones are 0 as in Webots' Python API, which copies the list
-    into a C array of ``count`` doubles (``setSFRotation([0, 0, -1])`` is the rotation by angle
-    0): more values than the field holds, another kind of value, a NaN or a number beyond
-    :data:`LARGEST_FIELD_NUMBER` is refused, where Webots raises, instead of being dropped or
-    put into the world.
+    says what it takes: -2 a text, -1 a bool, 0 an integer of 32 bits, 1 a number, else a list,
+    tuple or numpy array (Webots' SWIG API, to R2022b, read any sequence) of at most
+    ``count`` finite numbers, of which missing ones are 0 as in Webots' Python API, which
+    copies the list into a C array of ``count`` doubles (``setSFRotation([0, 0, -1])`` is the
+    rotation by angle 0): more values than the field holds, another kind of value, a NaN or a
+    number beyond :data:`LARGEST_FIELD_NUMBER` is refused, where Webots raises, instead of
+    being dropped or put into the world.
 
     Raises:
         WrongTypeError: A value of another kind.
@@ -521,6 +521,10 @@ def field_value(value: Any, count: int, function: str) -> Any:
                 "32 bits"
             )
         return numbers
+    if hasattr(value, "tolist") and not isinstance(value, (list, tuple)):
+        # A numpy array of the field's numbers: Webots' SWIG API (to R2022b) read any sequence.
+        listed = value.tolist()
+        value = listed if isinstance(listed, list) else value
     if not isinstance(value, (list, tuple)):
         raise WrongTypeError(f"{where}: expected a list of {count} numbers, found {_a_type(value)}")
     if len(value) > count:

@@ -12,8 +12,8 @@ E-puck.proto`` (R2022b on: the default controller is ``e-puck_avoid_obstacles``,
 channels 1, the camera 52 x 39 pixels with a 0.84 rad field of view; the E-puck.proto of Webots
 V8.5 declares the same default controller and radio channels, so worlds of every version share
 them), ``projects/objects/factory/containers/protos/WoodenBox.proto`` (size 0.6 m, mass 0,
-unlocked, from R2021b on); the light nodes' fields are those of Webots' reference manual
-(Light, PointLight, SpotLight, DirectionalLight).
+unlocked, from R2021b on); the light nodes' and WorldInfo's fields are those of Webots'
+reference manual (Light, PointLight, SpotLight, DirectionalLight, WorldInfo).
 """
 
 from __future__ import annotations
@@ -61,6 +61,9 @@ _E_PUCK = DeclaredFields(
         "camera_width": [float(DEFAULT_WIDTH)],
         "camera_height": [float(DEFAULT_HEIGHT)],
         "camera_fieldOfView": [DEFAULT_FOV],
+        "camera_rotation": [0.0, 0.0, 1.0, 0.0],
+        "camera_noise": [0.0],
+        "camera_motionBlur": [0.0],
         "distance_sensor_numberOfRays": [1.0],
     },
     strings={
@@ -70,7 +73,58 @@ _E_PUCK = DeclaredFields(
         "customData": "",
         "version": "1",
     },
-    flags={"supervisor": False, "synchronization": True, "kinematic": False},
+    flags={
+        "supervisor": False,
+        "synchronization": True,
+        "kinematic": False,
+        "camera_antiAliasing": False,
+    },
+    floats=frozenset({"camera_fieldOfView", "camera_noise", "camera_motionBlur"}),
+)
+
+# Webots' reference manual, WorldInfo (R2022a on: gravity a number, coordinateSystem).
+_WORLD_INFO = DeclaredFields(
+    numbers={
+        "gravity": [9.81],
+        "CFM": [0.00001],
+        "ERP": [0.2],
+        "basicTimeStep": [32.0],
+        "FPS": [60.0],
+        "optimalThreadCount": [1.0],
+        "physicsDisableTime": [1.0],
+        "physicsDisableLinearThreshold": [0.01],
+        "physicsDisableAngularThreshold": [0.01],
+        "inkEvaporation": [0.0],
+        "gpsReference": [0.0, 0.0, 0.0],
+        "lineScale": [0.1],
+        "dragForceScale": [30.0],
+        "dragTorqueScale": [5.0],
+        "randomSeed": [0.0],
+    },
+    strings={
+        "title": "",
+        "window": "",
+        "physics": "",
+        "coordinateSystem": "ENU",
+        "gpsCoordinateSystem": "local",
+    },
+    floats=frozenset(
+        {
+            "gravity",
+            "CFM",
+            "ERP",
+            "basicTimeStep",
+            "FPS",
+            "physicsDisableTime",
+            "physicsDisableLinearThreshold",
+            "physicsDisableAngularThreshold",
+            "inkEvaporation",
+            "lineScale",
+            "dragForceScale",
+            "dragTorqueScale",
+        }
+    ),
+    nodes=frozenset({"defaultDamping"}),
 )
 
 # Base nodes' fields (Webots' reference manual, PBRAppearance and Material): a supervisor
@@ -236,6 +290,7 @@ _DECLARED = {
     "RectangleArena": _RECTANGLE_ARENA,
     "WoodenBox": _WOODEN_BOX,
     "E-puck": _E_PUCK,
+    "WorldInfo": _WORLD_INFO,
     "PBRAppearance": _PBR_APPEARANCE,
     "Material": _MATERIAL,
 }

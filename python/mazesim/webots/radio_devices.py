@@ -109,14 +109,35 @@ def _packet_bytes(message: Any, length: int | None, most: int) -> bytes:
     elif isinstance(message, (bytes, bytearray, memoryview)):
         data = bytes(message)
     else:
-        try:  # a list of numbers (or any sequence of them: a numpy array, a tuple)
-            data = struct.pack(f"{len(message)}d", *(float(v) for v in message))
-        except (TypeError, ValueError, struct.error):
-            raise WrongTypeError(
-                "expected an Emitter packet as str, bytes or a list of numbers, found "
-                f"{_a_type(message)}"
-            ) from None
+        data = _numbers_packet(message)
     return data if length is None else data[: max(0, int(length))]
+
+
+def _numbers_packet(message: Any) -> bytes:
+    """A list of numbers (a tuple, a numpy array) packed as Webots' ``Emitter.send`` packs it
+    (its emitter.py since R2024a): its first item chooses the format, doubles (``d``) for a
+    float and 4-byte ints (``i``) for an int or a bool, native order; an empty list is no
+    packet (b"")."""
+    items: list[Any] = []
+    try:
+        items = list(message.tolist() if hasattr(message, "tolist") else message)
+    except TypeError:
+        kind = None  # not a sequence
+    else:
+        first = items[0] if items else 0
+        kind = "d" if isinstance(first, float) else "i" if isinstance(first, int) else None
+    if kind is not None and not items:
+        return b""
+    try:
+        if kind is None:
+            raise TypeError
+        return struct.pack(f"{len(items)}{kind}", *items)
+    except (TypeError, ValueError, struct.error):
+        what = "numbers" if kind is None else "ints (its first item is one)"
+        raise WrongTypeError(
+            f"expected an Emitter packet as str, bytes or a list of {what}, found "
+            f"{_a_type(message)}" + ("" if kind is None else f" holding {_shown(items[:8])}")
+        ) from None
 
 
 class _Tuned:
@@ -211,7 +232,8 @@ class Emitter(_Tuned, Device):
         return range_m
 
     def send(self, message: Any, length: int | None = None) -> int:
-        """Sends a packet (str, bytes, or a list of numbers sent as doubles).
+        """Sends a packet (str, bytes, or a list of numbers packed as Webots' Python does:
+        doubles when its first item is a float, 4-byte ints when it is an int or a bool).
 
         Returns:
             1 when the packet was queued, 0 when the emitter's buffer is full (or the packet is
@@ -223,7 +245,7 @@ class Emitter(_Tuned, Device):
         # the bound of an unlimited buffer is refused.
         data = _packet_bytes(message, length, max(buffer, MAX_UNLIMITED_BUFFER_BYTES))
         if not data:
-            _print_error("Error: wb_emitter_send(): a packet must have at least 1 byte.")
+            _print_error("Error: wb_emitter_send(): invalid size=0 argument.")
             return 0
         simulation = self._simulation
         if self._queued_at != simulation.steps:
@@ -364,12 +386,13 @@ class Receiver(_Tuned, _Sensor):
         )
 
     def getFloats(self) -> tuple[float, ...] | None:
-        """The head packet as doubles (what ``Emitter.send`` of a list of numbers sends), as
+        """The head packet as doubles (what ``Emitter.send`` of a list of floats sends), as
         Webots' Python ``Receiver.getFloats`` reads it (None with Webots' error when empty)."""
         return self._unpacked("d", 8)
 
     def getInts(self) -> tuple[int, ...] | None:
-        """The head packet as 4-byte integers, as Webots' ``Receiver.getInts``."""
+        """The head packet as 4-byte integers (what ``Emitter.send`` of a list of ints sends),
+        as Webots' ``Receiver.getInts``."""
         return self._unpacked("i", 4)
 
     def getBools(self) -> tuple[bool, ...] | None:

@@ -562,7 +562,8 @@ class Node(NotSimulated):
                 types[name] = Field.SF_COLOR
         declared = declared_fields(self._type_name)
         for name in declared.floats & types.keys():
-            types[name] = Field.SF_FLOAT
+            if len(self._numbers.get(name, ())) == 1:  # a file's older SFVec3f gravity stays one
+                types[name] = Field.SF_FLOAT
         for name in declared.nodes - types.keys():
             types[name] = Field.SF_NODE  # empty where the file leaves it out
         # Every robot of the world has both, live, whatever its node writes (a project's PROTO
@@ -706,17 +707,22 @@ class Node(NotSimulated):
         return []
 
     def getNumberOfFields(self) -> int:
-        """The number of fields :meth:`getField` knows."""
-        if self._id == 0:
-            return 1
-        posed = self._live or self._translation is not None
-        return (
-            len(self._strings)
-            + (1 if posed else 0)
-            + (1 if self._live or self._rotation else 0)
-            + (1 if self._type_name in GROUPING_TYPES or self._holds_children else 0)
-            + len(self._field_nodes)
-        )
+        """The number of fields :meth:`getField` knows (:meth:`getFieldByIndex` reads each)."""
+        return len(self._field_types())
+
+    def getFieldByIndex(self, index: int) -> Field | None:
+        """The field at ``index`` among those :meth:`getField` knows (0 to
+        :meth:`getNumberOfFields` - 1), or None with Webots' error: a loop over a node's
+        fields reads each once (in mazesim's order, not always the declaration's)."""
+        types = self._field_types()
+        if not 0 <= index < len(types):
+            _print_error(
+                f"Error: wb_supervisor_node_get_field_by_index(): index {index} out of range "
+                f"[0, {len(types) - 1}]."
+            )
+            return None
+        name = list(types)[index]
+        return Field(self, name, types[name])
 
     def getStaticBalance(self) -> bool:
         """True: the robot stands on the floor."""
@@ -1040,6 +1046,8 @@ class Supervisor(Robot):
                 "argument."
             )
             return None
+        if "." in name:
+            return self._from_def_path(name.split("."))
         scene = self._simulation.scene
         unnamed = not scene.defs and self._simulation.scene_edits is None
         if name == scene.robot_def or unnamed:
@@ -1053,6 +1061,20 @@ class Supervisor(Robot):
                 self._nodes[name] = Node(scene.defs[name], name, node_id)
             return self._nodes[name]
         return None
+
+    def _from_def_path(self, names: list[str]) -> Node | None:
+        """The node of a dotted DEF path (``"ROBOT.JOINT.SOLID"``): the node of the first DEF
+        name, then each next one the first node of that DEF name inside the last, as Webots'
+        reference manual has ``wb_supervisor_node_get_from_def`` use dots "as scoping operator
+        in the DEF parameter"; None when a name is empty or not found."""
+        if not all(names):
+            return None
+        node = self.getFromDef(names[0])
+        for name in names[1:]:
+            if node is None:
+                return None
+            node = _inside_named(node, name)
+        return node
 
     def getFromId(self, id: int) -> Node | None:
         """The node of that id (the root, a top-level node, a node inside a grouping node, a DEF
@@ -1243,3 +1265,15 @@ class Supervisor(Robot):
     def virtualRealityHeadsetIsUsed(self) -> bool:
         """False."""
         return False
+
+
+def _inside_named(node: Node, name: str) -> Node | None:
+    """The first node of DEF ``name`` inside ``node`` (in its ``children`` and its single-node
+    fields, depth first, in file order), or None."""
+    pending = [*node._children, *node._field_nodes.values()][::-1]
+    while pending:
+        inner = pending.pop()
+        if inner._def == name:
+            return inner
+        pending.extend([*inner._children, *inner._field_nodes.values()][::-1])
+    return None

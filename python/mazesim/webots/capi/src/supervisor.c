@@ -316,6 +316,19 @@ WbFieldRef wb_supervisor_node_get_proto_field(WbNodeRef node, const char *field_
   return field_of(node, field_name, "wb_supervisor_node_get_proto_field");
 }
 
+WbFieldRef wb_supervisor_node_get_field_by_index(WbNodeRef node, int index) {
+  call_node("wb_supervisor_node_get_field_by_index", node);
+  call_int(index);
+  call_end();
+  if (answer_int(0) <= 0)
+    return NULL;
+  /* The field's name comes with it (the answer's third value). */
+  char *name = answer_text(2);
+  WbFieldRef field = answer_field(name ? name : "");
+  free(name);
+  return field;
+}
+
 int wb_supervisor_node_get_number_of_fields(WbNodeRef node) {
   call_node("wb_supervisor_node_get_number_of_fields", node);
   call_end();

@@ -217,6 +217,9 @@ namespace webots {
     Field *getProtoField(const std::string &fieldName) const {
       return Field::findField(wb_supervisor_node_get_proto_field(ref, fieldName.c_str()));
     }
+    Field *getFieldByIndex(int index) const {
+      return Field::findField(wb_supervisor_node_get_field_by_index(ref, index));
+    }
     int getNumberOfFields() const { return wb_supervisor_node_get_number_of_fields(ref); }
     const double *getPosition() const { return wb_supervisor_node_get_position(ref); }
     const double *getOrientation() const { return wb_supervisor_node_get_orientation(ref); }

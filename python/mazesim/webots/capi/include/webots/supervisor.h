@@ -90,6 +90,7 @@ const char *wb_supervisor_node_get_type_name(WbNodeRef node);
 const char *wb_supervisor_node_get_base_type_name(WbNodeRef node);
 bool wb_supervisor_node_is_proto(WbNodeRef node);
 WbFieldRef wb_supervisor_node_get_field(WbNodeRef node, const char *field_name);
+WbFieldRef wb_supervisor_node_get_field_by_index(WbNodeRef node, int index);
 WbFieldRef wb_supervisor_node_get_proto_field(WbNodeRef node, const char *field_name);
 int wb_supervisor_node_get_number_of_fields(WbNodeRef node);
 const double *wb_supervisor_node_get_position(WbNodeRef node);
