@@ -39,6 +39,40 @@ def test_a_write_replaces_the_file_whole_with_the_usual_permissions(tmp_path: Pa
     assert stat.S_IMODE(target.stat().st_mode) == 0o666 & ~mask
 
 
+@pytest.mark.parametrize("mode", [0o600, 0o640, 0o755])
+def test_a_replaced_file_keeps_its_permissions_in_both_writers(tmp_path: Path, mode: int) -> None:
+    # A private file stays private: the Python writer (runs, policies, summaries) and the
+    # core's (World.save) give the new file the old one's permission bits.
+    target = tmp_path / "kept.json"
+    target.write_text("old")
+    target.chmod(mode)
+    with atomic_file(target) as handle:
+        handle.write(b"new")
+    assert stat.S_IMODE(target.stat().st_mode) == mode and target.read_text() == "new"
+    world_file = tmp_path / "kept.toml"
+    world_file.write_text("old")
+    world_file.chmod(mode)
+    mazesim.load_world("arena").save(str(world_file))
+    assert stat.S_IMODE(world_file.stat().st_mode) == mode
+    assert mazesim.load_world(str(world_file)).name == mazesim.load_world("arena").name
+
+
+def test_a_read_only_file_is_refused_and_kept_by_both_writers(tmp_path: Path) -> None:
+    target = tmp_path / "frozen.json"
+    target.write_text("old")
+    target.chmod(0o444)
+    with pytest.raises(MazesimIOError, match="frozen.json: cannot write the file: it is read-only"):
+        with atomic_file(target) as handle:
+            handle.write(b"new")
+    world_file = tmp_path / "frozen.toml"
+    world_file.write_text("old")
+    world_file.chmod(0o444)
+    with pytest.raises(MazesimIOError, match="it is read-only"):
+        mazesim.load_world("arena").save(str(world_file))
+    assert target.read_text() == world_file.read_text() == "old"
+    assert _hidden(tmp_path) == []
+
+
 def test_an_error_inside_the_block_leaves_the_file_and_no_temporary(tmp_path: Path) -> None:
     target = tmp_path / "summary.json"
     target.write_text("old")

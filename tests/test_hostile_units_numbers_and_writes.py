@@ -334,3 +334,34 @@ def test_a_wheel_command_not_finite_is_refused_when_given() -> None:
 def test_a_maze_of_ten_metre_cells_is_still_taken() -> None:
     layout = mazesim.MazeLayout(cell_size=10.0)
     assert layout.cell_size == 10.0
+
+
+def _python_side_numbers() -> list[tuple[str, Callable[[], object]]]:
+    """Numbers the Python side takes itself (not through the core's ranges), each given a value
+    its arithmetic cannot use, with the parameter the refusal must name."""
+    from mazesim.actions import wheel_speeds
+    from mazesim.batch import cruise_step_length
+    from mazesim.controllers import AvoidCollision, Explore
+    from mazesim.episodes import StartJitter, shortest_path_steps
+    from mazesim.sensor_rays import SensorRays
+
+    world = mazesim.load_world("seed-maze")
+    robot = mazesim.RobotProfile.builtin("seed")
+    return [
+        ("control_step_ms", lambda: shortest_path_steps(world, 0.0)),
+        ("control_step_ms", lambda: cruise_step_length(robot, math.nan)),
+        ("position", lambda: StartJitter(position=-1.0)),
+        ("yaw", lambda: StartJitter(yaw=math.inf)),
+        ("threshold", lambda: AvoidCollision(threshold=math.nan)),
+        ("turn", lambda: Explore(turn=math.nan)),
+        ("max_speed", lambda: wheel_speeds("00", math.nan)),
+        ("ray_length", lambda: SensorRays(world, robot, -1.0)),
+    ]
+
+
+@pytest.mark.parametrize("index", range(8))
+def test_a_python_side_number_is_refused_naming_it_before_any_arithmetic(index: int) -> None:
+    # shortest_path_steps(world, 0.0) divided by zero: an InternalError asking for a report.
+    name, call = _python_side_numbers()[index]
+    with pytest.raises(mazesim.InvalidArgumentError, match=f"expected {name} to be a finite"):
+        call()

@@ -220,6 +220,29 @@ class OutputTarget(NamedTuple):
     stream: bool
 
 
+def _replaced_mode(user_path: str, path: str) -> int | None:
+    """The permission bits of the regular file at ``path`` that a write replaces, None when
+    there is none.
+
+    Raises:
+        MazesimIOError: The file may not be written by anyone (``0o444``): a plain write of it
+            fails, and its replacement must not either.
+    """
+    try:
+        found = os.stat(path)
+    except OSError:
+        return None
+    if not stat.S_ISREG(found.st_mode):
+        return None
+    mode = stat.S_IMODE(found.st_mode)
+    if not mode & (stat.S_IWUSR | stat.S_IWGRP | stat.S_IWOTH):
+        error = PermissionError(errno.EACCES, os.strerror(errno.EACCES), user_path)
+        raise write_failure(
+            user_path, error, "it is read-only (make it writable, or save under another name)"
+        )
+    return mode
+
+
 def write_failure(path: str | os.PathLike[str], error: OSError, what: str = "") -> MazesimIOError:
     """The error of a failed write of ``path``: its message names the user's path (not a
     temporary file) and the system's reason; ``errno``, ``strerror`` and ``filename`` are set.
@@ -381,13 +404,17 @@ def atomic_file(path: str | os.PathLike[str]) -> Iterator[IO[bytes]]:
         with _streamed(target.path) as buffer:
             yield buffer
         return
+    kept = _replaced_mode(user_path, target.path)
     remove_stale_temporaries(target.path)
     temporary = temporary_name(target.path)
     _temporary_writing(os.path.basename(temporary), True)
     try:
         try:
-            # Created with the user's usual permissions (``0o666`` less the umask): no chmod.
+            # Created with the user's usual permissions (``0o666`` less the umask); the file it
+            # replaces keeps its own (a private file stays private).
             handle = open(temporary, "xb")  # noqa: SIM115 - closed below, before the rename
+            if kept is not None:
+                os.fchmod(handle.fileno(), kept)
         except OSError as error:
             raise write_failure(user_path, error) from None
         with handle:

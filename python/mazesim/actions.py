@@ -44,7 +44,7 @@ from typing import NamedTuple
 import numpy as np
 import numpy.typing as npt
 
-from mazesim.errors import InvalidActionError, _shown
+from mazesim.errors import InvalidActionError, _bounded_number, _shown
 
 __all__ = [
     "ACTIONS",
@@ -140,10 +140,12 @@ def wheel_speeds(code: str, max_speed: float) -> tuple[float, float]:
 
     Raises:
         InvalidActionError: The code is not one of :data:`ACTION_CODES`.
+        InvalidArgumentError: ``max_speed`` is NaN, infinite or below 0.
 
     Example:
         >>> wheel_speeds("aa", 6.28)
         (1.57, -1.57)
     """
     action = ACTIONS[ACTION_CODES[action_index(code)]]
-    return action.left * max_speed, action.right * max_speed
+    limit = _bounded_number("max_speed", max_speed, least=0.0)
+    return action.left * limit, action.right * limit

@@ -35,7 +35,7 @@ from mazesim._core import BatchSimulator, RobotProfile, World
 from mazesim._hot_paths import checks_own_arguments
 from mazesim._sizes import MOST_ENVS, bounded_array, bounded_list
 from mazesim.actions import WHEEL_SPEED_FRACTIONS
-from mazesim.errors import InvalidArgumentError
+from mazesim.errors import InvalidArgumentError, _bounded_number
 
 __all__ = ["CONTROL_STEP_MS", "RobotBatch", "RobotChoice", "cruise_step_length"]
 
@@ -55,9 +55,10 @@ def first_profile(robot: RobotChoice) -> RobotProfile:
 
 def cruise_step_length(robot: RobotProfile, control_step_ms: float = CONTROL_STEP_MS) -> float:
     """Metres the robot drives in one control step at the cruise speed (action ``00``)."""
+    step = _bounded_number("control_step_ms", control_step_ms, above=0.0)
     left, right = WHEEL_SPEED_FRACTIONS[0]
     speed = 0.5 * (left + right) * robot.max_wheel_speed * robot.wheel_radius
-    return float(speed * control_step_ms / 1000.0)
+    return float(speed * step / 1000.0)
 
 
 class RobotBatch:

@@ -13,7 +13,7 @@ from __future__ import annotations
 import numpy as np
 import numpy.typing as npt
 
-from mazesim.errors import InvalidArgumentError
+from mazesim.errors import InvalidArgumentError, _bounded_number
 
 __all__ = ["AvoidCollision", "Explore", "FollowLine"]
 
@@ -54,8 +54,8 @@ class AvoidCollision:
             threshold: Raw proximity reading above which an obstacle is seen (80 in the report).
             max_speed: Maximum wheel speed in rad/s (6.28 for the e-puck).
         """
-        self.threshold = float(threshold)
-        self.max_speed = float(max_speed)
+        self.threshold = _bounded_number("threshold", threshold)
+        self.max_speed = _bounded_number("max_speed", max_speed, least=0.0)
 
     def __call__(self, distance_sensors: npt.ArrayLike) -> tuple[float, float]:
         """Computes the wheel speeds for one robot.
@@ -180,9 +180,9 @@ class FollowLine:
             speed: Wheel speed in rad/s on a straight line (half the e-puck's maximum).
             turn: Speed difference in rad/s added to one wheel and taken from the other.
         """
-        self.threshold = float(threshold)
-        self.speed = float(speed)
-        self.turn = float(turn)
+        self.threshold = _bounded_number("threshold", threshold)
+        self.speed = _bounded_number("speed", speed)
+        self.turn = _bounded_number("turn", turn)
 
     def __call__(self, ground_sensors: npt.ArrayLike) -> tuple[float, float]:
         """Computes the wheel speeds for one robot.
@@ -281,10 +281,10 @@ class Explore:
             tie: Sides closer than this in volts count as equally open (a random side is taken).
             seed: Seed of the random choice of side.
         """
-        self.threshold = float(threshold)
-        self.speed = float(speed)
-        self.turn = 0.5 * self.speed if turn is None else float(turn)
-        self.tie = float(tie)
+        self.threshold = _bounded_number("threshold", threshold)
+        self.speed = _bounded_number("speed", speed)
+        self.turn = 0.5 * self.speed if turn is None else _bounded_number("turn", turn)
+        self.tie = _bounded_number("tie", tie, least=0.0)
         self.seed = seed
         self.reset()
 

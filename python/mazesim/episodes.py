@@ -29,7 +29,13 @@ from mazesim._core import RobotProfile, World
 from mazesim._seeding import seed_sequence
 from mazesim._seeding import stream as random_stream
 from mazesim.batch import CONTROL_STEP_MS, RobotBatch, RobotChoice, cruise_step_length
-from mazesim.errors import InvalidArgumentError, RegisteredName, _known_name, _shown
+from mazesim.errors import (
+    InvalidArgumentError,
+    RegisteredName,
+    _bounded_number,
+    _known_name,
+    _shown,
+)
 from mazesim.maze import CellMaze, navigator_problems
 
 __all__ = [
@@ -60,6 +66,11 @@ class StartJitter:
     position: float = 0.02
     yaw: float = math.radians(10.0)
 
+    def __post_init__(self) -> None:
+        # A NaN or negative jitter would draw NaN starts.
+        object.__setattr__(self, "position", _bounded_number("position", self.position, least=0.0))
+        object.__setattr__(self, "yaw", _bounded_number("yaw", self.yaw, least=0.0))
+
 
 def shortest_path_steps(world: World, control_step_ms: float = CONTROL_STEP_MS) -> float:
     """Control steps of the shortest path at cruise speed.
@@ -67,11 +78,12 @@ def shortest_path_steps(world: World, control_step_ms: float = CONTROL_STEP_MS) 
     The path runs from the start cell's centre through the cell centres of a breadth-first
     shortest path to the goal cell's centre, less the goal's radius; turns cost nothing.
     """
+    step = _bounded_number("control_step_ms", control_step_ms, above=0.0)
     maze = CellMaze(world)
     goal = world.goal
     radius = 0.0 if goal is None else goal[2]
     length = max(maze.shortest_path_length() - radius, 0.0)
-    return length / cruise_step_length(RobotProfile.builtin("seed"), control_step_ms)
+    return length / cruise_step_length(RobotProfile.builtin("seed"), step)
 
 
 def learning_problems(world: World, *, show_command: str | None = None) -> list[str]:

@@ -14,10 +14,12 @@ from __future__ import annotations
 
 import contextlib
 import difflib
+import math
+import numbers
 import os
 import re
 from collections.abc import Collection, Iterator
-from typing import Annotated
+from typing import Annotated, Any
 
 __all__ = [
     "ClusterConnectionError",
@@ -378,3 +380,32 @@ def _path_of(value: object, name: str) -> str:
         hint = " (decode bytes with os.fsdecode)" if "bytes" in found else ""
         raise WrongTypeError(f"expected {name} to be a str or os.PathLike, found {found}{hint}")
     return value
+
+
+def _bounded_number(
+    name: str, value: Any, *, above: float | None = None, least: float | None = None
+) -> float:
+    """A number taken from a caller, as a float: finite, and above ``above`` or at least
+    ``least`` when given (a step of 0 ms divides by 0; a NaN threshold compares false with
+    every reading). The one check of such parameters of the Python side.
+
+    Raises:
+        WrongTypeError: Not a real number (a bool is none either).
+        InvalidArgumentError: NaN, infinite, or out of its range.
+    """
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise WrongTypeError(f"expected {name} to be a number, found {_a_type(value)}")
+    number = float(value)
+    if math.isfinite(number) and (above is None or number > above):
+        if least is None or number >= least:
+            return number
+    bound = (
+        f" above {above:g}"
+        if above is not None
+        else f" of at least {least:g}"
+        if least is not None
+        else ""
+    )
+    raise InvalidArgumentError(
+        f"expected {name} to be a finite number{bound}, found {_shown(value)}"
+    )

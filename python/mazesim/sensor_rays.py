@@ -14,6 +14,8 @@ from typing import TYPE_CHECKING
 import numpy as np
 import numpy.typing as npt
 
+from mazesim.errors import _bounded_number
+
 if TYPE_CHECKING:
     from mazesim._core import RobotProfile, World
 
@@ -49,7 +51,7 @@ class SensorRays:
         self.sensor_poses = np.asarray(robot.distance_sensor_poses(), dtype=np.float64).reshape(
             -1, 3
         )
-        self.ray_length = float(ray_length)
+        self.ray_length = _bounded_number("ray_length", ray_length, above=0.0)
 
     def origins(
         self, pose: tuple[float, float, float]

@@ -456,7 +456,11 @@ def test_batch_reader_mask_hides_the_sample_from_robots_outside_it() -> None:
 
 def test_batch_reader_checks_shapes() -> None:
     robot = mazesim.RobotProfile.builtin("seed")
-    reader = BatchBarcodeReader([RobustDecoder(DEFAULT_BOOK)] * 2, robot)
+    # One decoder repeated (`[decoder] * 2`) would mix two robots' samples: refused.
+    shared = RobustDecoder(DEFAULT_BOOK)
+    with pytest.raises(InvalidArgumentError, match=r"decoders\[0\] given again as decoders\[1\]"):
+        BatchBarcodeReader([shared] * 2, robot)
+    reader = BatchBarcodeReader([RobustDecoder(DEFAULT_BOOK) for _ in range(2)], robot)
     with pytest.raises(InvalidArgumentError, match=r"\(2,\)"):
         reader.update(np.zeros(3), np.zeros((2, 2)))
     with pytest.raises(InvalidArgumentError, match="encoders"):

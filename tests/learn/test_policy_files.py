@@ -53,6 +53,21 @@ def saved(tmp_path_factory: pytest.TempPathFactory) -> Path:
     return folder
 
 
+@pytest.mark.parametrize("damage", ["nan", "checkpoint id 0", "repeated checkpoint"])
+def test_a_navigator_its_loader_would_refuse_is_not_saved(tmp_path: Path, damage: str) -> None:
+    policy = small_policy()
+    assert policy.lower_q is not None
+    if damage == "nan":
+        policy.lower_q[1, 5, 3] = np.nan
+    elif damage == "checkpoint id 0":
+        policy.checkpoint_ids = [0, 2, 3, 4, 5, 6, 7]
+    else:
+        policy.checkpoint_ids = [1, 1, 3, 4, 5, 6, 7]
+    with pytest.raises(PolicyFormatError):
+        save_policy(policy, tmp_path / "nav")
+    assert not (tmp_path / "nav").exists(), "nothing written"
+
+
 def _copy(saved: Path, folder: Path) -> Path:
     folder.mkdir(parents=True, exist_ok=True)
     for name in (POLICY_JSON, TABLES_NPZ):

@@ -58,6 +58,31 @@ def test_a_run_round_trips_within_its_units(tmp_path: Path) -> None:
     assert first.subtasks is not None and np.array_equal(second.subtasks, first.subtasks)
 
 
+@pytest.mark.parametrize(
+    ("damage", "field"),
+    [("nan pose", "episodes[0].x"), ("inf wheel", "wheel_speeds"), ("far pose", "episodes[0].x")],
+)
+def test_a_run_its_loader_would_refuse_is_not_saved_and_the_file_kept(
+    tmp_path: Path, damage: str, field: str
+) -> None:
+    path = tmp_path / "run.json"
+    save_run(long_run(20), path)
+    before = path.read_bytes()
+    run = long_run(20)
+    episode = run.episodes[0]
+    if damage == "nan pose":
+        episode.poses[3, 0] = np.nan
+    elif damage == "far pose":
+        episode.poses[3, 0] = 1e8
+    else:
+        assert episode.wheel_speeds is not None
+        episode.wheel_speeds[2, 0] = np.inf
+    with pytest.raises(mazesim.InvalidArgumentError, match="load_run reads back") as refused:
+        save_run(run, path)
+    assert field in str(refused.value)
+    assert path.read_bytes() == before, "a good file is never replaced by one it cannot read"
+
+
 def test_an_episode_the_run_lacks_is_refused_before_a_video_is_begun(tmp_path: Path) -> None:
     from mazesim.replay.video import video_frames, write_video
 

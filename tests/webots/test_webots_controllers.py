@@ -245,6 +245,8 @@ def test_a_controllers_own_oserror_is_its_traceback(tmp_path: Path) -> None:
         ("import sys\nsys.exit()\n", 0),
         # Python ends with status 1: a number in the summary, not JSON's true.
         ("import sys\nsys.exit(True)\n", 1),
+        # os._exit ends the controller alone, as its process in Webots: the run keeps its files.
+        ("import os\nos._exit(7)\n", 7),
         ("while True\n    pass\n", 1),
         # Deeper than Python's parser goes: the controller fails to compile, as under Webots;
         # the import scan before the run once let the RecursionError out as an internal error.

@@ -274,12 +274,25 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
         reason: None,
     })?;
     let name = name.to_string_lossy();
+    // The file it replaces keeps its permissions (a private file stays private); one that
+    // nobody may write is refused, as a plain write of it would be.
+    let kept = std::fs::metadata(&target).ok().filter(|m| m.is_file());
+    if kept.as_ref().is_some_and(|m| m.permissions().readonly()) {
+        return Err(refused(
+            path,
+            "cannot write the file",
+            "it is read-only (make it writable, or save under another name)".into(),
+        ));
+    }
     crate::temporary_files::remove_orphans(dir, &name);
     let temporary = crate::temporary_files::Temporary::new(dir, &name);
     let tmp = &temporary.path;
     let result = (|| {
         let mut f = OpenOptions::new().write(true).create_new(true).open(tmp)?;
         f.write_all(bytes)?;
+        if let Some(old) = &kept {
+            f.set_permissions(old.permissions())?;
+        }
         f.sync_all()?;
         std::fs::rename(tmp, &target)
     })();

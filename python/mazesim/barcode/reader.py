@@ -67,13 +67,24 @@ class BatchBarcodeReader:
         robot: The robot profile of the batch.
 
     Raises:
-        InvalidArgumentError: No decoders, or decoders with different floor bands.
+        InvalidArgumentError: No decoders, one decoder given for two robots, or decoders with
+            different floor bands.
     """
 
     def __init__(self, decoders: Sequence[Decoder], robot: RobotProfile) -> None:
         self.decoders = list(decoders)
         if not self.decoders:
             raise InvalidArgumentError("expected at least one decoder, found none")
+        first_of: dict[int, int] = {}
+        for index, decoder in enumerate(self.decoders):
+            earlier = first_of.setdefault(id(decoder), index)
+            if earlier != index:
+                # A decoder holds its robot's samples: shared, two robots' readings mix.
+                raise InvalidArgumentError(
+                    f"expected a decoder of its own for each robot, found decoders[{earlier}] "
+                    f"given again as decoders[{index}] (`[decoder] * n` repeats one object: "
+                    "make each, e.g. `[make_decoder(...) for _ in range(n)]`)"
+                )
         bands = {(d.floor_low, d.floor_high) for d in self.decoders}
         if len(bands) != 1:
             raise InvalidArgumentError(

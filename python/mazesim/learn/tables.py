@@ -567,7 +567,12 @@ def encoding_metadata(door_distance: bool = False) -> dict[str, Any]:
 
 
 def save_policy(policy: TrainedPolicy, folder: str | os.PathLike[str]) -> None:
-    """Writes a navigator into ``folder`` as ``tables.npz`` and ``policy.json``."""
+    """Writes a navigator into ``folder`` as ``tables.npz`` and ``policy.json``.
+
+    Raises:
+        PolicyFormatError: The navigator holds what :func:`load_policy` would refuse (a NaN
+            in a table, a checkpoint id below 1): nothing is written.
+    """
     arrays: dict[str, npt.NDArray[Any]] = {}
     door_distance = False
     if policy.kind == "hierarchical":
@@ -598,7 +603,23 @@ def save_policy(policy: TrainedPolicy, folder: str | os.PathLike[str]) -> None:
     if policy.world_file is not None:
         metadata["world"]["file"] = policy.world_file
     metadata["training"] = policy.training
+    _readable(arrays, metadata, Path(os.fspath(folder)))
     write_bundle(folder, TABLES_FILE, METADATA_FILE, arrays, metadata)
+
+
+def _readable(arrays: dict[str, npt.NDArray[Any]], metadata: dict[str, Any], where: Path) -> None:
+    """Refuses, before anything is written, a navigator :func:`load_policy` would refuse: the
+    loader's own checks of its tables (finite) and of its world's entries (checkpoint ids, the
+    higher states), so that a save never leaves a folder its loader cannot read.
+
+    Raises:
+        PolicyFormatError: What the loader would say of the saved folder.
+    """
+    for name, table in arrays.items():
+        _finite(table, name, where)
+    world_schema = policy_schema().fields["world"]
+    world_schema.check(json.loads(json.dumps(metadata["world"])), str(where), "world")
+    _check_world(metadata["world"], where)
 
 
 def policy_schema() -> Record:

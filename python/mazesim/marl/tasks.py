@@ -25,7 +25,6 @@ it.
 from __future__ import annotations
 
 import math
-import numbers
 from dataclasses import dataclass
 from typing import Any
 
@@ -35,7 +34,7 @@ import numpy.typing as npt
 from mazesim._core import MazeLayout, World, generate_maze
 from mazesim._toml import dump_toml, load_toml
 from mazesim.envs.navigation import start_and_goal_cells
-from mazesim.errors import InvalidArgumentError, _shown
+from mazesim.errors import InvalidArgumentError, _bounded_number
 from mazesim.maze import GoalDistance, PathDistanceTable
 
 #: The layout of the tasks' mazes: the default one, without barcode checkpoints.
@@ -65,16 +64,13 @@ def agent_names(num_robots: int) -> list[str]:
 
 
 def finite_number(name: str, value: Any, positive: bool = False) -> float:
-    """A task parameter that is a number: finite (and above 0 with ``positive``), as a float.
+    """A task parameter that is a number: finite (and above 0 with ``positive``), as a float
+    (:func:`mazesim._sizes.bounded_number`, the one check of such numbers).
 
     Raises:
-        InvalidArgumentError: Another value.
+        InvalidArgumentError: Another value (a ``WrongTypeError`` for no number at all).
     """
-    real = isinstance(value, numbers.Real) and not isinstance(value, bool)
-    if not (real and math.isfinite(value) and (value > 0 or not positive)):
-        kind = "a finite number above 0" if positive else "a finite number"
-        raise InvalidArgumentError(f"expected {name} to be {kind}, found {_shown(value)}")
-    return float(value)
+    return _bounded_number(name, value, above=0.0 if positive else None)
 
 
 @dataclass(frozen=True)

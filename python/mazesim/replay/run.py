@@ -419,8 +419,23 @@ def _subtask_letter(subtask: int) -> str:
 
 
 def save_run(run: RecordedRun, path: str | os.PathLike[str]) -> None:
-    """Writes a run file atomically (gzip-compressed when the name ends in ``.gz``)."""
-    text = json.dumps(run.as_json(), separators=(",", ":")).encode("utf-8")
+    """Writes a run file atomically (gzip-compressed when the name ends in ``.gz``).
+
+    Raises:
+        InvalidArgumentError: The run holds what :func:`load_run` would refuse (a NaN pose, an
+            infinite wheel speed, a seed below 0): nothing is written, and a file already at
+            ``path`` is kept, since a save must never leave a file its loader cannot read.
+    """
+    with np.errstate(invalid="ignore"):  # a NaN's cast is refused just below, by the reader
+        values = run.as_json()
+    try:
+        run_from_json(values, os.fspath(path))
+    except RunFormatError as refused:
+        raise InvalidArgumentError(
+            f"save_run: expected a run load_run reads back, found one it refuses ({refused}); "
+            "nothing written"
+        ) from None
+    text = json.dumps(values, separators=(",", ":")).encode("utf-8")
     if os.fspath(path).endswith(".gz"):
         text = gzip.compress(text, mtime=0)
     with atomic_file(path) as handle:

@@ -16,11 +16,11 @@ import threading
 import time
 import tokenize
 import traceback
-from collections.abc import Mapping
+from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 from types import ModuleType, TracebackType
-from typing import Any
+from typing import Any, NoReturn
 
 from mazesim._callers import users_code
 from mazesim._core import RobotProfile, World
@@ -341,7 +341,7 @@ def run_controller(
         code = compile(source, "<botstudio>" if source is BOTSTUDIO_PROGRAM else file, "exec")
         try:
             watchdog.start()
-            with users_code():
+            with users_code(), _process_exit_as_system_exit():
                 exec(code, {"__name__": "__main__", "__file__": file, "__builtins__": __builtins__})
         finally:
             try:
@@ -541,6 +541,25 @@ def _restore_modules(saved: dict[str, ModuleType]) -> None:
     for name in [n for n in sys.modules if n == "controller" or n.startswith("controller.")]:
         del sys.modules[name]
     sys.modules.update(saved)
+
+
+@contextlib.contextmanager
+def _process_exit_as_system_exit() -> Iterator[None]:
+    """While a controller runs in mazesim's own process, its ``os._exit(status)`` ends the
+    controller with that status, as a ``sys.exit(status)``, not mazesim with it: in Webots it
+    ends the controller's process alone, and here the run's outputs (summary.json, the
+    trajectory) and a notebook's kernel outlive it. (A crash of the interpreter itself, a
+    segmentation fault, still ends the process: a C controller's runs apart.)"""
+    process_exit = os._exit
+
+    def controller_exit(status: int) -> NoReturn:
+        raise SystemExit(status)
+
+    os._exit = controller_exit
+    try:
+        yield
+    finally:
+        os._exit = process_exit
 
 
 def _exit_status(request: SystemExit) -> tuple[int, str]:
