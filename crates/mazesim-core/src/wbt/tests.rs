@@ -435,6 +435,28 @@ fn a_use_explosion_stays_bounded() {
 }
 
 #[test]
+fn more_node_bodies_than_a_world_holds_are_refused_before_any_token() {
+    // 600,000 Solids took 2 GB of tokens and tree before the node count refused them; a byte
+    // scan refuses them first. Braces in strings and comments are no node bodies.
+    let body = "Solid { children [ Shape { geometry Box { size 0.1 0.1 0.1 } } ] }\n";
+    let bodies_each = 3;
+    let count = (super::parser::MAX_EXPANDED_NODES as usize) / bodies_each + 1;
+    let text = format!("#VRML_SIM R2023b utf8\n{}", body.repeat(count));
+    let Err(Error::Format { message, .. }) = Document::parse(&text, "many.wbt") else {
+        panic!("refused")
+    };
+    assert!(
+        message.contains("found more node bodies than that"),
+        "{message}"
+    );
+    let quoted = format!(
+        "#VRML_SIM R2023b utf8\n# {{{{{{\nSolid {{ name \"{}\" }}\n",
+        "{".repeat(2_000_000)
+    );
+    assert!(Document::parse(&quoted, "quoted.wbt").is_ok());
+}
+
+#[test]
 fn bad_world_info_values_fall_back_with_a_warning() {
     let w =
         import("#VRML_SIM R2023b utf8\nWorldInfo { basicTimeStep -4 coordinateSystem \"EUN\" }\n");
