@@ -74,6 +74,22 @@ def test_eval_refuses_to_write_its_trace_over_the_navigator(tmp_path: Path) -> N
     assert (navigator / "policy.json").read_bytes() == before
 
 
+@pytest.mark.parametrize("command", [["demo"], ["webots", "run", "--world", "arena"]])
+def test_a_recording_too_long_to_hold_is_refused_before_the_run(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], command: list[str]
+) -> None:
+    # 1e6 simulated seconds of --html grew ~10 MB/s towards ~58 GB, to fail at the end.
+    out = tmp_path / "out"
+    args = [*command, "--seconds", "1000000", "--html", str(tmp_path / "r.html")]
+    if command[0] == "webots":
+        args.append(str(REPO / "tests" / "data" / "controllers" / "left_wall_state_machine.py"))
+    code = main([*args, "--out", str(out), "--no-progress"])
+    error = capsys.readouterr().err
+    assert code == 2, error
+    assert "expected --seconds of at most 10000 with --html" in error
+    assert not (tmp_path / "r.html").exists() and not (out / "summary.json").exists()
+
+
 def test_sweep_refuses_an_output_folder_holding_its_sweep_file(tmp_path: Path) -> None:
     config = tmp_path / "sweep.toml"
     config.write_text('[sweep]\nname = "x"\n[grid]\ntrainer = "flat-q"\n')

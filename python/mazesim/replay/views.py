@@ -17,6 +17,7 @@ from typing import TYPE_CHECKING, Any, TextIO
 
 from mazesim._core import RobotProfile, Simulator, World
 from mazesim._paths import output_file, shell_command
+from mazesim.errors import InvalidArgumentError
 from mazesim.replay.run import RecordedRun
 
 if TYPE_CHECKING:
@@ -24,6 +25,7 @@ if TYPE_CHECKING:
     import numpy.typing as npt
 
 __all__ = [
+    "MAX_RECORDED_SECONDS",
     "FleetLiveView",
     "SimulatorWatch",
     "add_viewing_options",
@@ -83,9 +85,30 @@ def viewing_outputs(args: argparse.Namespace) -> list[tuple[str, str | None]]:
     return [(f"--{name}", getattr(args, name, None)) for name in ("html", "video", "record")]
 
 
+#: The longest run (simulated seconds) a command records for ``--html``, ``--video`` or
+#: ``--record``: a recording is held in memory until the run ends (2,000 s of ``mazesim demo``
+#: took 115 MB more and a 5.6 MB page), so 10,000 s is about 0.6 GB and a 28 MB page; the
+#: million seconds ``--seconds`` allows would need about 58 GB.
+MAX_RECORDED_SECONDS = 10_000.0
+
+
 def recording_requested(args: argparse.Namespace) -> bool:
-    """Whether the command must record its run (for ``--html``, ``--video`` or ``--record``)."""
-    return any(getattr(args, name, None) for name in ("html", "video", "record"))
+    """Whether the command must record its run (for ``--html``, ``--video`` or ``--record``).
+
+    Raises:
+        InvalidArgumentError: A recording of a run longer than :data:`MAX_RECORDED_SECONDS`
+            (``--seconds``), refused before the run rather than when the memory runs out.
+    """
+    requested = [name for name in ("html", "video", "record") if getattr(args, name, None)]
+    seconds = getattr(args, "seconds", None)
+    if requested and isinstance(seconds, (int, float)) and seconds > MAX_RECORDED_SECONDS:
+        options = "/".join(f"--{name}" for name in requested)
+        raise InvalidArgumentError(
+            f"expected --seconds of at most {MAX_RECORDED_SECONDS:g} with {options} (the "
+            f"recording is held in memory, about 58 KB a simulated second), found {seconds:g}; "
+            "record a shorter run, or run this one without them"
+        )
+    return bool(requested)
 
 
 def viewing_requested(args: argparse.Namespace) -> bool:
