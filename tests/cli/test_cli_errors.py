@@ -90,6 +90,25 @@ def test_a_recording_too_long_to_hold_is_refused_before_the_run(
     assert not (tmp_path / "r.html").exists() and not (out / "summary.json").exists()
 
 
+@pytest.mark.parametrize(
+    ("address", "said"),
+    [
+        ("127.0.0.1:1", "nothing answers there within 5 s"),
+        ("localhost:99999", "a port from 1 to 65535"),
+        ("ray://nohost", "a port from 1 to 65535"),
+    ],
+)
+def test_a_ray_address_where_nothing_answers_is_refused_at_once(
+    capsys: pytest.CaptureFixture[str], address: str, said: str
+) -> None:
+    # Ray itself retried a silent address for over a minute, printing its own log lines.
+    pytest.importorskip("ray")
+    code = main(["eval", "--episodes", "1", "--address", address, "--no-progress"])
+    error = capsys.readouterr().err
+    assert code == 2 and said in error, error
+    assert error.count("\n") == 1, error
+
+
 def test_sweep_refuses_an_output_folder_holding_its_sweep_file(tmp_path: Path) -> None:
     config = tmp_path / "sweep.toml"
     config.write_text('[sweep]\nname = "x"\n[grid]\ntrainer = "flat-q"\n')

@@ -17,6 +17,7 @@ import contextlib
 import logging
 import os
 import shutil
+import socket
 import tempfile
 from collections.abc import Iterator
 from types import ModuleType
@@ -114,6 +115,42 @@ def connection_advice(address: str, error: BaseException) -> str:
     )
 
 
+#: How long a cluster's address is given to accept a connection before Ray is asked to join it
+#: (Ray itself retries a silent address for over a minute, printing its own log lines).
+ANSWER_SECONDS = 5.0
+
+
+def _answering(address: str) -> None:
+    """Refuses, before Ray is asked to join it, an address that is no HOST:PORT (with
+    ``ray://`` or not; ``auto`` is Ray's to find) or where nothing accepts a connection within
+    :data:`ANSWER_SECONDS`.
+
+    Raises:
+        InvalidArgumentError: No host and port 1 to 65535.
+        ClusterConnectionError: Nothing answers there.
+    """
+    if address == "auto":
+        return
+    where = address.removeprefix("ray://")
+    host, _, port_text = where.rpartition(":")
+    port = int(port_text) if port_text.isdigit() else 0
+    if not host or not 1 <= port <= 65535:
+        raise InvalidArgumentError(
+            f"expected a Ray address ('local', 'auto', HOST:6379 or ray://HOST:10001, a port "
+            f"from 1 to 65535), found {_shown(address)}"
+        )
+    try:
+        with socket.create_connection((host.strip("[]"), port), timeout=ANSWER_SECONDS):
+            pass
+    except OSError as error:
+        reason = error.strerror or type(error).__name__
+        raise ClusterConnectionError(
+            f"could not join the Ray cluster at {address}: nothing answers there within "
+            f"{ANSWER_SECONDS:g} s ({reason}); expected a cluster started with 'ray start "
+            "--head' listening there"
+        ) from None
+
+
 @contextlib.contextmanager
 def ray_session(address: str | None = None, cpus: int | None = None) -> Iterator[ModuleType]:
     """Connects to Ray for the duration of a ``with`` block.
@@ -149,6 +186,7 @@ def ray_session(address: str | None = None, cpus: int | None = None) -> Iterator
                 log_to_driver=False,
             )
     else:
+        _answering(address)
         try:
             ray.init(address=address, logging_level=logging.WARNING, log_to_driver=False)
         except ValueError as error:
