@@ -454,6 +454,16 @@ def test_batch_reader_mask_hides_the_sample_from_robots_outside_it() -> None:
         reader.reset(np.ones(1, dtype=bool))
 
 
+def test_a_reader_refuses_a_simulator_of_another_robot_naming_both() -> None:
+    # An alphabot2 reader on the seed robot's simulator read a sensor index the robot lacks:
+    # "IndexError: index 2 is out of bounds".
+    simulator = mazesim.Simulator(mazesim.load_world("seed-maze"), robot="seed")
+    reader = BarcodeReader(RobustDecoder(DEFAULT_BOOK), mazesim.RobotProfile.builtin("alphabot2"))
+    with pytest.raises(InvalidArgumentError, match="robot 'alphabot2' .* found one of 'seed'"):
+        reader.update(simulator)
+    assert BarcodeReader(RobustDecoder(DEFAULT_BOOK), simulator.robot).update(simulator) is None
+
+
 def test_batch_reader_checks_shapes() -> None:
     robot = mazesim.RobotProfile.builtin("seed")
     # One decoder repeated (`[decoder] * 2`) would mix two robots' samples: refused.

@@ -83,6 +83,20 @@ def test_a_run_its_loader_would_refuse_is_not_saved_and_the_file_kept(
     assert path.read_bytes() == before, "a good file is never replaced by one it cannot read"
 
 
+def test_a_run_saved_with_a_byte_order_mark_reads_and_one_in_utf16_is_named(
+    tmp_path: Path,
+) -> None:
+    # As every reader of text of mazesim's: a BOM (a Windows editor's) is no part of the text.
+    path = tmp_path / "run.json"
+    save_run(long_run(10), path)
+    text = path.read_bytes()
+    path.write_bytes(b"\xef\xbb\xbf" + text)
+    assert load_run(path).episodes[0].frames == 11
+    path.write_bytes(text.decode("utf-8").encode("utf-16"))
+    with pytest.raises(RunFormatError, match="found UTF-16 text .* save it as UTF-8"):
+        load_run(path)
+
+
 def test_an_episode_the_run_lacks_is_refused_before_a_video_is_begun(tmp_path: Path) -> None:
     from mazesim.replay.video import video_frames, write_video
 
@@ -316,6 +330,14 @@ HOSTILE_FIELDS = [
     (("episodes", 0, "subtasks"), "9" * 21, "episodes[0].subtasks"),
     (("episodes", 0, "levels"), ["x"] * 21, "episodes[0].levels"),
     (("episodes", 0, "decisions"), [{"chosen": 0}], "episodes[0].decisions[0]"),
+    # A list of the right length is refused for the item that does not fit, by its index.
+    (("episodes", 0, "x"), [0.0] * 5 + ["a"] + [0.0] * 15, "episodes[0].x[5]: expected a number"),
+    (("episodes", 0, "x"), [0.0] * 20 + [float("nan")], "episodes[0].x[20]: expected a number"),
+    (
+        ("episodes", 0, "readings"),
+        [[1.0]] * 20 + [[1.0, 2.0]],
+        "episodes[0].readings[20]: expected",
+    ),
 ]
 
 

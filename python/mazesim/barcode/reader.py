@@ -15,7 +15,7 @@ import numpy.typing as npt
 from mazesim._core import RobotProfile, Simulator
 from mazesim.barcode.decoders import Decoder, Reading
 from mazesim.barcode.odometry import Odometry, _as_mask, barcode_sensor_index
-from mazesim.errors import InvalidArgumentError, WrongTypeError, _a_type
+from mazesim.errors import InvalidArgumentError, WrongTypeError, _a_type, _shown
 
 __all__ = ["BarcodeReader", "BatchBarcodeReader"]
 
@@ -40,6 +40,9 @@ class BarcodeReader:
         if not isinstance(decoder, Decoder):
             raise WrongTypeError(f"expected a Decoder, found {_a_type(decoder)}")
         self.decoder = decoder
+        self.robot = robot
+        #: The simulator whose robot was found to be ``robot`` (checked once, not every step).
+        self._checked: Simulator | None = None
         self.sensor_index = barcode_sensor_index(robot)
         self.odometry = Odometry(robot, 1, self.sensor_index)
 
@@ -53,7 +56,18 @@ class BarcodeReader:
 
         Returns:
             The reading of a code the sensor just left, or None.
+
+        Raises:
+            InvalidArgumentError: The simulator's robot is not the one the reader was made for
+                (another sensor, another wheel geometry for its odometry).
         """
+        if simulator is not self._checked and simulator.robot != self.robot:
+            raise InvalidArgumentError(
+                f"expected a simulator of the robot {_shown(self.robot.name)} the reader was made "
+                f"for, found one of {_shown(simulator.robot.name)}; make the reader with the "
+                "simulator's robot: BarcodeReader(decoder, simulator.robot)"
+            )
+        self._checked = simulator
         ground = float(simulator.ground_sensors()[self.sensor_index])
         position = self.odometry.update(simulator.encoders)[0]
         return self.decoder.update(ground, (float(position[0]), float(position[1])))

@@ -112,7 +112,7 @@ class RunFields:
         try:
             array = np.asarray(value, dtype=np.float64)
         except (ValueError, TypeError, OverflowError):
-            raise self.fail(field, expected, value) from None
+            raise self._first_misfit(value, field, columns, bound) from None
         wanted_ndim = 1 if columns is None else 2
         if rows == 0 and columns is not None:
             array = array.reshape(0, max(columns, 0))
@@ -121,11 +121,43 @@ class RunFields:
             or (columns is not None and columns >= 0 and array.shape[1] != columns)
             or not np.all(np.abs(array) <= bound)
         ):
-            raise self.fail(field, expected, value)
+            raise self._first_misfit(value, field, columns, bound)
         return array
+
+    def _first_misfit(
+        self, value: list[Any], field: str, columns: int | None, bound: float
+    ) -> RunFormatError:
+        """The refusal of a table's first item that does not fit, named by its index (``x[5]``,
+        ``readings[3][1]``): a list of the right length is refused for what is in it."""
+        number = f"a number in [-{bound:g}, {bound:g}]"
+        width = None if columns is None or columns < 0 else columns
+        if columns is not None and columns < 0 and value and isinstance(value[0], list):
+            width = len(value[0])
+        for index, item in enumerate(value):
+            place = f"{field}[{index}]"
+            if columns is None:
+                if not _fits(item, bound):
+                    return self.fail(place, number, item)
+                continue
+            if not isinstance(item, list) or (width is not None and len(item) != width):
+                return self.fail(place, f"a row of {width} numbers", item)
+            for column, entry in enumerate(item):
+                if not _fits(entry, bound):
+                    return self.fail(f"{place}[{column}]", number, entry)
+        return self.fail(field, f"a table of numbers in [-{bound:g}, {bound:g}]", value)
 
     def indices(self, value: Any, field: str, count: int) -> list[int]:
         """A list of whole numbers in ``[0, count)``."""
         if not isinstance(value, list):
             raise self.fail(field, f"a list of frames in [0, {count - 1}]", value)
         return [self.whole(item, f"{field}[{i}]", 0, count - 1) for i, item in enumerate(value)]
+
+
+def _fits(item: Any, bound: float) -> bool:
+    """Whether one item of a table is a finite number within ``[-bound, bound]``."""
+    if isinstance(item, bool) or not isinstance(item, (int, float)):
+        return False
+    try:
+        return math.isfinite(float(item)) and abs(float(item)) <= bound
+    except OverflowError:
+        return False
