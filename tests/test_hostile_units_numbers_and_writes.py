@@ -365,3 +365,27 @@ def test_a_python_side_number_is_refused_naming_it_before_any_arithmetic(index: 
     name, call = _python_side_numbers()[index]
     with pytest.raises(mazesim.InvalidArgumentError, match=f"expected {name} to be a finite"):
         call()
+
+
+@pytest.mark.parametrize(
+    ("call", "written"),
+    [
+        (
+            lambda: mazesim.Simulator(mazesim.load_world("seed-maze"), control_step_ms=1e300),
+            "1e+300",
+        ),
+        (
+            lambda: mazesim.Simulator(mazesim.load_world("seed-maze"), control_step_ms=1e-300),
+            "1e-300",
+        ),
+        (lambda: mazesim.RobotProfile.builtin("e-puck").with_infrared_elevation(1e308), "1e+308"),
+    ],
+)
+def test_the_cores_messages_write_a_huge_or_tiny_number_as_python_does(
+    call: Callable[[], object], written: str
+) -> None:
+    # Rust's `{}` of an f64 wrote 1e300 as 301 digits and 1e-300 as 0.000...0001.
+    with pytest.raises(mazesim.InvalidArgumentError) as refused:
+        call()
+    message = str(refused.value)
+    assert f"found {written}" in message and "00000000000000000000" not in message

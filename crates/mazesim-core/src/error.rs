@@ -135,5 +135,91 @@ fn os_reason(err: &std::io::Error) -> String {
     }
 }
 
+/// Most digits a numeral of a message keeps as written: every `u64` (a seed) has at most 20.
+const MOST_DIGITS_KEPT: usize = 21;
+
+/// `message` with each numeral of more than [`MOST_DIGITS_KEPT`] digits, which Rust's `{}` of an
+/// `f64` writes in full (1e300 as 301 digits, 1e-300 as 0.000...0001), written as Python
+/// writes such a float (`1e+300`, `1e-300`, `2.512e+122`); and without the integer type a TOML
+/// reader names (`found integer 99999999999999999999 as i128`). The one pass every message of
+/// the core's takes on its way to Python.
+pub fn readable_numbers(message: &str) -> String {
+    let bytes = message.as_bytes();
+    let mut out = String::with_capacity(message.len());
+    let (mut i, mut copied) = (0usize, 0usize);
+    while i < bytes.len() {
+        let starts = bytes[i].is_ascii_digit()
+            && (i == 0 || !(bytes[i - 1].is_ascii_alphanumeric() || bytes[i - 1] == b'.'));
+        if !starts {
+            i += 1;
+            continue;
+        }
+        let mut end = i;
+        let mut point = false;
+        while end < bytes.len()
+            && (bytes[end].is_ascii_digit()
+                || (bytes[end] == b'.'
+                    && !point
+                    && end + 1 < bytes.len()
+                    && bytes[end + 1].is_ascii_digit()))
+        {
+            point |= bytes[end] == b'.';
+            end += 1;
+        }
+        let numeral = &message[i..end];
+        let digits = numeral.bytes().filter(u8::is_ascii_digit).count();
+        if digits > MOST_DIGITS_KEPT {
+            if let Ok(value) = numeral.parse::<f64>() {
+                out.push_str(&message[copied..i]);
+                out.push_str(&python_float(value));
+                copied = end;
+            }
+        }
+        i = end;
+    }
+    out.push_str(&message[copied..]);
+    for kind in [" as i128", " as u128", " as i64", " as u64"] {
+        out = out.replace(&format!("`{kind}"), "`");
+    }
+    out
+}
+
+/// A float as Python's `repr` writes one in exponent form: `1e+300`, `2.512e+122`, `1e-300`.
+fn python_float(value: f64) -> String {
+    let written = format!("{value:e}");
+    match written.split_once('e') {
+        Some((mantissa, exponent)) if !exponent.starts_with('-') => {
+            format!("{mantissa}e+{exponent}")
+        }
+        _ => written,
+    }
+}
+
 /// Result with the core's error.
 pub type Result<T> = std::result::Result<T, Error>;
+
+#[cfg(test)]
+mod tests {
+    use super::readable_numbers;
+
+    #[test]
+    fn long_numerals_are_written_as_python_writes_floats_and_short_ones_kept() {
+        let huge = format!("found {}", 1e300_f64);
+        assert_eq!(readable_numbers(&huge), "found 1e+300");
+        let tiny = format!("found {} ms", 1e-300_f64);
+        assert_eq!(readable_numbers(&tiny), "found 1e-300 ms");
+        let noisy = format!("at most 10000 rad/s, found {}", 2.512e122_f64);
+        assert_eq!(
+            readable_numbers(&noisy),
+            "at most 10000 rad/s, found 2.512e+122"
+        );
+        // A seed past 64 bits, line numbers, decimals and versions keep their digits.
+        let kept = "p.toml:12:3: seed in 0..=18446744073709551615, found 18446744073709551616 \
+                    (0.0015 m, R2023b, v1.2)";
+        assert_eq!(readable_numbers(kept), kept);
+        assert_eq!(
+            readable_numbers("found integer `99999999999999999999` as i128"),
+            "found integer `99999999999999999999`"
+        );
+    }
+}

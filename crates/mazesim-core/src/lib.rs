@@ -68,7 +68,7 @@ pub mod temporary_files;
 pub use batch::{Batch, OutputBuffers, StepOutputs};
 pub use control::Controller;
 pub use crossing::{Crossing, CrossingTracker};
-pub use error::{Error, Location, Result};
+pub use error::{readable_numbers, Error, Location, Result};
 pub use lut::LookupTable;
 pub use robot::{robot_profile_names, Perturbation, RobotProfile};
 pub use rollout::{RunCounters, RunOptions, RunTrace};

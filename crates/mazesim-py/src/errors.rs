@@ -39,6 +39,7 @@ fn build(py: Python<'_>, err: &Error) -> PyResult<PyErr> {
         Error::Internal(_) | Error::Interrupted => "InternalError",
     };
     let class = errors.getattr(class_name)?;
+    let message = mazesim_core::readable_numbers(&err.to_string());
     let instance = match err {
         // The name asked for, so that the message can end with the closest available name.
         Error::UnknownName {
@@ -47,9 +48,9 @@ fn build(py: Python<'_>, err: &Error) -> PyResult<PyErr> {
             let keywords = pyo3::types::PyDict::new(py);
             keywords.set_item("name", name)?;
             keywords.set_item("available", available.clone())?;
-            class.call((err.to_string(),), Some(&keywords))?
+            class.call((message,), Some(&keywords))?
         }
-        _ => class.call1((err.to_string(),))?,
+        _ => class.call1((message,))?,
     };
     match err {
         Error::Format {
