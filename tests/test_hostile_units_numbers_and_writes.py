@@ -389,3 +389,19 @@ def test_the_cores_messages_write_a_huge_or_tiny_number_as_python_does(
         call()
     message = str(refused.value)
     assert f"found {written}" in message and "00000000000000000000" not in message
+
+
+def test_numpy_integers_are_ints_everywhere_and_numpy_bools_no_ints() -> None:
+    # BatchSimulator(seeds=np.int64(2)) was refused while Simulator(seed=np.int64(2)) was taken;
+    # CodeBook ids read from an array (np.int64) were refused; np.True_ passed for an int.
+    from mazesim.barcode import Alg7Decoder, CodeBook
+
+    world = mazesim.load_world("seed-maze")
+    batch = mazesim.BatchSimulator(world, num_envs=2, seeds=np.int64(2))
+    plain = mazesim.BatchSimulator(world, num_envs=2, seeds=2)
+    assert batch.snapshot_env(1) == plain.snapshot_env(1)
+    assert CodeBook({np.int64(1): "10110"}).code(1) == "10110"
+    with pytest.raises(mazesim.InvalidArgumentError, match="positive integers"):
+        CodeBook({np.True_: "10110"})
+    with pytest.raises(mazesim.WrongTypeError, match="max_samples refused: expected int"):
+        Alg7Decoder(CodeBook.default(), max_samples=np.True_)  # type: ignore[arg-type]

@@ -480,12 +480,14 @@ def _takes_int(hint: Any) -> bool:
 _READ_AS_INTS = (bool, float, np.bool_, np.floating)
 #: The plain values a call may take without failing whatever their annotation says (``float()``
 #: reads True, an f-string reads None or 3 as a name): checked before the call.
-_SCALARS = (bool, int, float, type(None))
+_SCALARS = (bool, np.bool_, int, float, type(None))
 #: The scalar types each annotation takes without a closer look.
 _PLAIN_TYPES: dict[Any, tuple[type, ...]] = {
     float: (float, int),
     int: (int,),
-    bool: (bool,),
+    # numpy's bool (a comparison of arrays gives one) is a bool, and no more an int than
+    # Python's is.
+    bool: (bool, np.bool_),
     str: (),
     type(None): (type(None),),
     None: (type(None),),

@@ -228,7 +228,11 @@ pub(crate) enum Seeds {
 impl Seeds {
     /// The seeds of `seeds`, an int or at most `most` ints, each in `0..2**64`.
     pub(crate) fn given(seeds: &Bound<'_, PyAny>, most: usize) -> PyResult<Self> {
-        if seeds.is_instance_of::<pyo3::types::PyInt>() {
+        // One int: Python's, or an integer scalar of numpy's (np.int64(2), as `seed` takes it),
+        // no sequence.
+        let scalar = seeds.is_instance_of::<pyo3::types::PyInt>()
+            || (seeds.hasattr("__index__")? && !seeds.hasattr("__len__")?);
+        if scalar {
             return Ok(Seeds::From(seeds.extract::<IntArg>()?.seed("seeds")?));
         }
         let expected = "ints in 0..2**64 (one per environment), or one int (env i gets seed + i)";

@@ -9,8 +9,11 @@ direction, or nothing.
 
 from __future__ import annotations
 
+import numbers
 from collections.abc import Iterator, Mapping, Sequence
 from typing import TYPE_CHECKING, Union, cast
+
+import numpy as np
 
 from mazesim._core import default_codes, validate_codes
 from mazesim.errors import InvalidArgumentError, _shown
@@ -75,11 +78,13 @@ class CodeBook:
 
     @staticmethod
     def _checked_id(value: object) -> int:
-        if isinstance(value, bool) or not isinstance(value, int) or value < 1:
+        # An int, or numpy's (np.int64(1), as ids read from an array are); no bool.
+        whole = isinstance(value, numbers.Integral) and not isinstance(value, (bool, np.bool_))
+        if not whole or int(value) < 1:  # type: ignore[call-overload]
             raise InvalidArgumentError(
                 f"expected checkpoint ids that are positive integers, found {_shown(value)}"
             )
-        return value
+        return int(value)  # type: ignore[call-overload]
 
     @classmethod
     def default(cls) -> CodeBook:
