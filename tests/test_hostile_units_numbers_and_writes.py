@@ -405,3 +405,29 @@ def test_numpy_integers_are_ints_everywhere_and_numpy_bools_no_ints() -> None:
         CodeBook({np.True_: "10110"})
     with pytest.raises(mazesim.WrongTypeError, match="max_samples refused: expected int"):
         Alg7Decoder(CodeBook.default(), max_samples=np.True_)  # type: ignore[arg-type]
+
+
+def test_one_off_refusals_say_what_was_wrong(tmp_path: Path) -> None:
+    # Each named the wrong thing or said what was found as if it were what was expected.
+    from mazesim.cli import main
+    from mazesim.replay import save_run
+    from mazesim.replay.run import RecordedRun
+    from mazesim.transfer.randomise import parse_spec
+
+    with pytest.raises(mazesim.InvalidArgumentError, match=r"^expected floor_reflectance in"):
+        mazesim.MazeLayout(floor_reflectance=math.nan)
+    simulator = mazesim.Simulator(mazesim.load_world("seed-maze"))
+    with pytest.raises(mazesim.InvalidArgumentError, match=r"found a list$"):
+        simulator.step_robots([[1.0, 1.0]])
+    with pytest.raises(mazesim.InvalidArgumentError, match="the range of wheel_radius as finite"):
+        parse_spec("wheel_radius=nan:1")
+    empty = RecordedRun(
+        world=mazesim.load_world("arena"),
+        robot="seed",
+        controller="x",
+        seed=0,
+        control_step_ms=64.0,
+    )
+    save_run(empty, tmp_path / "none.json")
+    code = main(["replay", str(tmp_path / "none.json"), "-o", str(tmp_path / "p.html")])
+    assert code == 2

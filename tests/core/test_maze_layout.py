@@ -58,7 +58,7 @@ def test_the_layout_shows_and_keeps_its_values() -> None:
         (lambda: MazeLayout(cell_size=0.0), "wall thickness < cell size"),
         (lambda: MazeLayout(wall_thickness=0.3), "wall thickness < cell size"),
         (lambda: MazeLayout(cell_size=float("nan")), "wall thickness < cell size"),
-        (lambda: MazeLayout(floor_reflectance=1.5), "floor reflectance"),
+        (lambda: MazeLayout(floor_reflectance=1.5), "floor_reflectance in"),
         (lambda: MazeLayout(checkpoints="no"), "checkpoints"),
         (lambda: MazeLayout(cell_size="wide"), "cell_size"),
         (lambda: generate_maze(layout={"cell_size": 0.3}), "expected layout to be a MazeLayout"),

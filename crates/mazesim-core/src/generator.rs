@@ -174,11 +174,16 @@ impl MazeParams {
                 params.cell_size
             )));
         }
-        let reflectance_ok = params.floor_reflectance > 0.0 && params.floor_reflectance <= 1.0;
-        if !(0.0..=1.0).contains(&params.loops) || !reflectance_ok {
+        if !(0.0..=1.0).contains(&params.loops) {
             return Err(Error::InvalidArgument(format!(
-                "expected loops in [0, 1] and floor reflectance in (0, 1], found {} and {}",
-                params.loops, params.floor_reflectance
+                "expected loops in [0, 1], found {}",
+                params.loops
+            )));
+        }
+        if !(params.floor_reflectance > 0.0 && params.floor_reflectance <= 1.0) {
+            return Err(Error::InvalidArgument(format!(
+                "expected floor_reflectance in (0, 1], found {}",
+                params.floor_reflectance
             )));
         }
         Ok(())

@@ -15,11 +15,20 @@ fn describe(obj: &Bound<'_, PyAny>, expected: &str) -> String {
     // short, and a shape is shown only when it is a short sequence of sizes.
     let dtype = obj
         .getattr("dtype")
-        .map(|d| d.to_string().chars().take(80).collect::<String>())
-        .unwrap_or_else(|_| "no dtype".into());
-    let shape = crate::args::shape_of(obj)
-        .map(|s| shape_text(&s))
-        .unwrap_or_else(|| "no usable shape".into());
+        .map(|d| d.to_string().chars().take(80).collect::<String>());
+    let shape = crate::args::shape_of(obj).map(|s| shape_text(&s));
+    let Ok(dtype) = dtype else {
+        if !obj.hasattr("shape").unwrap_or(false) {
+            // No array at all (a list): what it is says enough.
+            return crate::args::type_name(obj);
+        }
+        let shape = shape.unwrap_or_else(|| "no usable shape".into());
+        return format!(
+            "{} of no dtype and shape {shape}",
+            crate::args::type_name(obj)
+        );
+    };
+    let shape = shape.unwrap_or_else(|| "no usable shape".into());
     format!(
         "{} of dtype {dtype} and shape {shape}{}",
         crate::args::type_name(obj),

@@ -68,6 +68,11 @@ def run_replay(args: argparse.Namespace, out: TextIO) -> int:
     run = load_run(args.run_file)
     # Checked whatever the output: an HTML replay shows every episode, but an episode the run
     # does not have is a mistake to say, not to pass over.
+    if not run.episodes:
+        raise InvalidArgumentError(
+            f"{args.run_file}: expected a run of at least one episode, found none (nothing to "
+            "replay)"
+        )
     if not 0 <= args.episode < len(run.episodes):
         raise InvalidArgumentError(
             f"--episode {args.episode}: expected an episode of {args.run_file} from 0 to "

@@ -258,7 +258,7 @@ def _check_value(parameter: Parameter, value: Any, where: str) -> Any:
 def _known_keys(source: str, table: str, given: Iterable[object], available: list[str]) -> None:
     """Refuses the first key of ``given`` (a table of the file ``source``) not ``available``."""
     for key in given:
-        _known_name(key, f"{source}: a key of {table or 'the file'}", available)
+        _known_name(key, f"a key of {table or 'the file'} in {source}", available)
 
 
 def _read_grid(source: str, grid: Any) -> dict[str, tuple[Any, ...]]:

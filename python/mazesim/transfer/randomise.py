@@ -185,7 +185,12 @@ def _inline(text: str) -> dict[str, Any]:
                 values = [float(low), float(high)]
             except ValueError:
                 values = []
-            if not equals or not colon or not all(math.isfinite(v) for v in values) or not values:
+            if equals and colon and values and not all(math.isfinite(v) for v in values):
+                raise InvalidArgumentError(
+                    f"randomisation: expected the range of {name} as finite numbers "
+                    f"low:high, found {_shown(span)} in {_shown(text)}"
+                )
+            if not equals or not colon or not values:
                 raise InvalidArgumentError(
                     "randomisation: expected a TOML file or axis=low:high, found "
                     f"{_shown(part)} in "
