@@ -22,49 +22,153 @@ pub fn line_column(text: &str, offset: usize) -> (usize, usize) {
     (line, column)
 }
 
-/// The dotted field path at `offset`: the enclosing `[table]` / `[[array]]` (with its index)
-/// and the key on that line, e.g. `walls[2].size`.
+/// The dotted field path at `offset`: the enclosing `[table]` / `[[array]]` (with its index, and
+/// its parent array's: `robots[0].carried[1]`), the key whose value holds `offset`, and the
+/// place in that value's arrays (`table[2][0]` for an item of a multi-line array of rows), e.g.
+/// `walls[2].size`. A line of a multi-line value that starts with `[` is part of the value,
+/// not a table header.
 pub fn field_at(text: &str, offset: usize) -> String {
     let offset = char_start(text, offset);
+    let mut scan = FieldScan::default();
     let line_start = text[..offset].rfind('\n').map_or(0, |i| i + 1);
+    for line in text[..line_start].lines() {
+        scan.line(line);
+    }
     let line_end = text[offset..].find('\n').map_or(text.len(), |i| offset + i);
-    let line = &text[line_start..line_end];
-    let key = line
-        .split_once('=')
-        .map(|(k, _)| k.trim().trim_matches('"').to_string())
-        .filter(|k| !k.is_empty() && !k.starts_with('[') && !k.contains(' '));
-    let mut table: Option<String> = None;
-    let mut counts: std::collections::HashMap<String, usize> = Default::default();
-    for l in text[..line_start].lines() {
-        let t = l.trim();
-        if let Some(name) = t.strip_prefix("[[").and_then(|r| r.split("]]").next()) {
-            let name = name.trim().to_string();
-            let n = counts.entry(name.clone()).or_insert(0);
-            table = Some(format!("{name}[{n}]"));
-            *n += 1;
-        } else if let Some(name) = t.strip_prefix('[').and_then(|r| r.split(']').next()) {
-            table = Some(name.trim().to_string());
-        }
-    }
-    let header = line.trim();
-    if key.is_none() && header.starts_with('[') {
+    let header = text[line_start..line_end].trim();
+    if scan.levels.is_empty() && header.starts_with('[') {
         // The error points at a table header itself (a missing field of that table).
-        let name = header
-            .trim_matches(|c| c == '[' || c == ']')
-            .trim()
-            .to_string();
-        let n = counts.get(&name).copied().unwrap_or(0);
-        return if header.starts_with("[[") {
-            format!("{name}[{n}]")
-        } else {
-            name
-        };
+        return scan.header_name(header, false);
     }
-    match (table, key) {
+    if scan.levels.is_empty() {
+        // The key is the line's, wherever on it the offset is; the value is read up to it.
+        let line = &text[line_start..line_end];
+        if let Some(equals) = line.find('=') {
+            let key = line[..equals].trim().trim_matches('"');
+            scan.key = (!key.is_empty() && !key.contains(' ')).then(|| key.to_string());
+            let value_start = line_start + equals + 1;
+            if offset > value_start {
+                scan.value(&text[value_start..offset]);
+            }
+        } else {
+            scan.key = None;
+        }
+    } else {
+        scan.value(&text[line_start..offset]);
+    }
+    let mut field = match (scan.table.clone(), scan.key.clone()) {
         (Some(t), Some(k)) => format!("{t}.{k}"),
         (Some(t), None) => t,
         (None, Some(k)) => k,
         (None, None) => "(top level)".to_string(),
+    };
+    for index in scan.levels.iter().flatten() {
+        field.push_str(&format!("[{index}]"));
+    }
+    field
+}
+
+/// What [`field_at`] knows of the text before the offset, line by line.
+#[derive(Default)]
+struct FieldScan {
+    /// The table the lines are in (`walls[2]`, `goal`), None at the top level.
+    table: Option<String>,
+    /// `[[name]]` arrays seen, by their full path, with how many entries each has so far.
+    counts: std::collections::HashMap<String, usize>,
+    /// The key whose value is being read (or the last key of the table).
+    key: Option<String>,
+    /// The open brackets of that value: the index of the item an array is at, None for an
+    /// inline table.
+    levels: Vec<Option<usize>>,
+}
+
+impl FieldScan {
+    fn line(&mut self, line: &str) {
+        let trimmed = line.trim();
+        let mut value = line;
+        if self.levels.is_empty() {
+            if trimmed.starts_with('[') {
+                self.table = Some(self.header_name(trimmed, true));
+                self.key = None;
+                return;
+            }
+            match line.split_once('=') {
+                Some((key, rest)) => {
+                    let key = key.trim().trim_matches('"');
+                    self.key = (!key.is_empty() && !key.contains(' ')).then(|| key.to_string());
+                    value = rest;
+                }
+                None => return,
+            }
+        }
+        self.value(value);
+    }
+
+    /// The brackets of (part of) a value: strings and comments skipped.
+    fn value(&mut self, text: &str) {
+        let mut quote: Option<char> = None;
+        let mut escaped = false;
+        for c in text.chars() {
+            if let Some(q) = quote {
+                if escaped {
+                    escaped = false;
+                } else if c == '\\' && q == '"' {
+                    escaped = true;
+                } else if c == q {
+                    quote = None;
+                }
+                continue;
+            }
+            match c {
+                '"' | '\'' => quote = Some(c),
+                '#' => return,
+                '[' => self.levels.push(Some(0)),
+                '{' => self.levels.push(None),
+                ']' | '}' => {
+                    self.levels.pop();
+                }
+                ',' => {
+                    if let Some(Some(index)) = self.levels.last_mut() {
+                        *index += 1;
+                    }
+                }
+                _ => {}
+            }
+        }
+    }
+
+    /// The path of a `[table]` or `[[array]]` header (`robots[0].carried[1]`), counting an
+    /// array's entry when `count`.
+    fn header_name(&mut self, header: &str, count: bool) -> String {
+        let array = header.starts_with("[[");
+        let name = header
+            .trim_start_matches('[')
+            .split(']')
+            .next()
+            .unwrap_or("")
+            .trim()
+            .to_string();
+        // A table under an array of tables is under its last entry.
+        let mut path = String::new();
+        for part in name.split('.') {
+            if !path.is_empty() {
+                path.push('.');
+            }
+            path.push_str(part.trim());
+            if let Some(&n) = self.counts.get(&path) {
+                if path.len() < name.len() || !array {
+                    path = format!("{path}[{}]", n.saturating_sub(1));
+                }
+            }
+        }
+        if !array {
+            return path;
+        }
+        let n = self.counts.get(&path).copied().unwrap_or(0);
+        if count {
+            self.counts.insert(path.clone(), n + 1);
+        }
+        format!("{path}[{n}]")
     }
 }
 
@@ -208,6 +312,26 @@ pub fn check_table_count(text: &str, source: &str) -> Result<(), Error> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn an_item_of_a_multi_line_array_and_a_nested_array_of_tables_are_named_by_index() {
+        // A row of a lookup table written one per line was named by its own text, taken for
+        // a table header; `[[robots.carried]]` lost its robot's index.
+        let text = "[models.ir]\nkind = \"ir\"\ntable = [\n  [0.0, 4095.0, 0.002],\n  \
+                    [nan, 4095.0, 0.002], # \"a [b\"\n  [0.1, \"x\", 0.0],\n]\nnext = 1\n\
+                    [[robots]]\nname = \"a\"\n[[robots]]\nname = \"b\"\n[[robots.carried]]\n\
+                    shape = \"disc\"\n";
+        let cases = [
+            ("nan", "models.ir.table[1][0]"),
+            ("\"x\"", "models.ir.table[2][1]"),
+            ("next", "models.ir.next"),
+            ("shape", "robots[1].carried[0].shape"),
+            ("name = \"b\"", "robots[1].name"),
+        ];
+        for (at, field) in cases {
+            assert_eq!(field_at(text, text.find(at).unwrap()), field, "{at}");
+        }
+    }
 
     #[test]
     fn a_readers_type_names_are_said_in_words_expected_first() {
