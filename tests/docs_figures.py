@@ -79,6 +79,7 @@ PAGE_CONSTANTS: dict[str, dict[str, str]] = {
     "ray.md": {
         "2.5x": "Ray's version (2.5 and later)",
         "20 s": "how long Ray retries without its token (Ray's behaviour)",
+        "5 s": "how long a cluster's address is given to answer, a rule (ANSWER_SECONDS)",
     },
     "reliability.md": {
         "0.1 to 1000 ms": "the limits of a world's time steps",

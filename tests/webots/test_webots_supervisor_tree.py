@@ -129,6 +129,13 @@ def test_world_info_and_the_e_puck_have_the_fields_webots_declares(
     assert puck.getField("camera_rotation").getSFRotation() == [0.0, 0.0, 1.0, 0.0]
     assert puck.getField("camera_noise").getTypeName() == "SFFloat"
     assert puck.getField("camera_antiAliasing").getSFBool() is False
+    # C's wb_supervisor_node_get_field_by_index asks for the name, then takes that field.
+    from mazesim.webots.native_calls import NativeCalls
+
+    calls = NativeCalls(supervisor, [])
+    (handle,) = calls.call("wb_supervisor_node_get_from_def", [b"EPUCK"])
+    (name,) = calls.call("wb_supervisor_node_get_field_by_index", [handle, 0])
+    assert name == puck.getFieldByIndex(0).getName().encode()
     # A loop over a node's fields by index reads each field once.
     for node in (info, puck):
         count = node.getNumberOfFields()

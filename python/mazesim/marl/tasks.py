@@ -65,7 +65,7 @@ def agent_names(num_robots: int) -> list[str]:
 
 def finite_number(name: str, value: Any, positive: bool = False) -> float:
     """A task parameter that is a number: finite (and above 0 with ``positive``), as a float
-    (:func:`mazesim._sizes.bounded_number`, the one check of such numbers).
+    (:func:`mazesim.errors._bounded_number`, the one check of such numbers).
 
     Raises:
         InvalidArgumentError: Another value (a ``WrongTypeError`` for no number at all).

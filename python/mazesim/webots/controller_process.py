@@ -360,12 +360,14 @@ def controller_main(
     """Runs one robot's controller against the world of the process at the other end of
     ``connection`` (the entry point of a controller process); ``last_words``: where it says why
     it cannot report its end (:mod:`mazesim.webots.process_template`)."""
+    from mazesim.webots import runner
     from mazesim.webots.importer import import_wbt, import_wbt_text
     from mazesim.webots.runner import run_controller
     from mazesim.webots.scene import body_y_up, read_scene, read_world_text
     from mazesim.webots.simulation import robot_profile
 
     _link["pid"] = os.getpid()
+    runner.OWN_PROCESS = True  # its os._exit ends this process alone, as in Webots
     text = job.world_text
     if text is None:
         world, imported = import_wbt(job.world_path, robot_line=job.robot_line)

@@ -349,7 +349,7 @@ FUNCTIONS: dict[str, Function] = {
             "get_field": ("getField", "s"),
             "get_proto_field": ("getProtoField", "s"),
             "get_number_of_fields": ("getNumberOfFields", ""),
-            "get_field_by_index": ("getFieldByIndex", "i"),
+            "get_field_by_index": ("_field_name_at", "i"),
             "get_position": ("getPosition", ""),
             "get_orientation": ("getOrientation", ""),
             "get_pose": ("getPose", "n"),
@@ -509,7 +509,7 @@ class NativeCalls:
                 self._node_handle(result._node)  # keeps the node, and so its id
                 self._fields.append(result)
                 self._field_handles[key] = len(self._fields)
-            return [self._field_handles[key], result.getType(), result.getName().encode("utf-8")]
+            return [self._field_handles[key], result.getType()]
         if isinstance(result, bool):
             return [int(result)]
         if isinstance(result, str):

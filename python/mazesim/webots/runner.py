@@ -543,13 +543,22 @@ def _restore_modules(saved: dict[str, ModuleType]) -> None:
     sys.modules.update(saved)
 
 
+#: Whether this process runs one controller of a world run (a controller process,
+#: :mod:`mazesim.webots.controller_process`), whose ``os._exit`` ends it alone, as in Webots.
+OWN_PROCESS = False
+
+
 @contextlib.contextmanager
 def _process_exit_as_system_exit() -> Iterator[None]:
     """While a controller runs in mazesim's own process, its ``os._exit(status)`` ends the
     controller with that status, as a ``sys.exit(status)``, not mazesim with it: in Webots it
     ends the controller's process alone, and here the run's outputs (summary.json, the
     trajectory) and a notebook's kernel outlive it. (A crash of the interpreter itself, a
-    segmentation fault, still ends the process: a C controller's runs apart.)"""
+    segmentation fault, still ends the process: a C controller's runs apart.) In a process of
+    the controller's own (:data:`OWN_PROCESS`) it ends that process, as in Webots."""
+    if OWN_PROCESS:
+        yield
+        return
     process_exit = os._exit
 
     def controller_exit(status: int) -> NoReturn:

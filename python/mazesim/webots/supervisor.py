@@ -714,15 +714,20 @@ class Node(NotSimulated):
         """The field at ``index`` among those :meth:`getField` knows (0 to
         :meth:`getNumberOfFields` - 1), or None with Webots' error: a loop over a node's
         fields reads each once (in mazesim's order, not always the declaration's)."""
-        types = self._field_types()
-        if not 0 <= index < len(types):
+        name = self._field_name_at(index)
+        return None if name is None else Field(self, name, self._field_types()[name])
+
+    def _field_name_at(self, index: int) -> str | None:
+        """The name of the field :meth:`getFieldByIndex` gives (what C's
+        ``wb_supervisor_node_get_field_by_index`` asks for), or None with Webots' error."""
+        names = list(self._field_types())
+        if not 0 <= index < len(names):
             _print_error(
                 f"Error: wb_supervisor_node_get_field_by_index(): index {index} out of range "
-                f"[0, {len(types) - 1}]."
+                f"[0, {len(names) - 1}]."
             )
             return None
-        name = list(types)[index]
-        return Field(self, name, types[name])
+        return names[index]
 
     def getStaticBalance(self) -> bool:
         """True: the robot stands on the floor."""

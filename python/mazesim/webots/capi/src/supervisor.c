@@ -317,14 +317,14 @@ WbFieldRef wb_supervisor_node_get_proto_field(WbNodeRef node, const char *field_
 }
 
 WbFieldRef wb_supervisor_node_get_field_by_index(WbNodeRef node, int index) {
+  /* The name of the field at `index` (Webots' error when there is none), then that field. */
   call_node("wb_supervisor_node_get_field_by_index", node);
   call_int(index);
   call_end();
-  if (answer_int(0) <= 0)
+  char *name = answer_text(0);
+  if (!name)
     return NULL;
-  /* The field's name comes with it (the answer's third value). */
-  char *name = answer_text(2);
-  WbFieldRef field = answer_field(name ? name : "");
+  WbFieldRef field = field_of(node, name, "wb_supervisor_node_get_field");
   free(name);
   return field;
 }
