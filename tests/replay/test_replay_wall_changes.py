@@ -113,7 +113,8 @@ def test_a_run_whose_walls_stand_still_is_written_as_before(recorded: RecordedRu
     [
         ([[3, []], [3, []]], r"walls\[1\]\[0\]: expected a whole number in \[4, "),
         ([[0, [[0, 0, -5, 5, 0]]]], r"walls\[0\]\[1\]: expected a list of at most"),
-        ([[0, [[0, 0, 5]]]], r"walls\[0\]\[1\]: expected a list of 1 rows of 5 numbers"),
+        # A row of the wrong width is named by its index.
+        ([[0, [[0, 0, 5]]]], r"walls\[0\]\[1\]\[0\]: expected a row of 5 numbers"),
         ([[10_000, []]], r"walls\[0\]\[0\]: expected a whole number in \[0, "),
         ([3, []], r"walls\[0\]: expected a pair \[frame, wall boxes\]"),
     ],
