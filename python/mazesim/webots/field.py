@@ -568,5 +568,4 @@ def _half_open(yaw: float) -> float:
 def _yaw_of_rotation(rotation: list[float]) -> float:
     """The heading (rad) of an axis-angle rotation: the angle of its image of the x axis."""
     ax, ay, az, angle = (rotation + [0.0, 0.0, 1.0, 0.0][len(rotation) :])[:4]
-    matrix = rotation_matrix(ax, ay, az, angle)
-    return math.atan2(matrix[3], matrix[0])
+    return heading_of(rotation_matrix(ax, ay, az, angle))

@@ -246,7 +246,8 @@ class Node(NotSimulated):
         for node in reversed(chain):
             if node._live:
                 x, y, yaw = node._field_pose()
-                turn = axis_angle(node._live_matrix(yaw))
+                body = node._body_turn()
+                turn = (0.0, 0.0, 1.0, yaw) if body is None else axis_angle(turned(yaw, body))
                 frame = placed(frame, (x, y, node._field_height()), turn)
             else:
                 frame = placed(frame, node._translation or (0.0, 0.0, 0.0), node._rotation)
