@@ -23,7 +23,7 @@ from typing import Any
 import numpy as np
 
 import mazesim
-from mazesim._settings import check_choices, setting
+from mazesim._settings import check_settings, setting
 from mazesim.errors import InvalidArgumentError, RegisteredName, _shown
 
 from .memory import engine_bytes, resident_bytes
@@ -92,7 +92,7 @@ class BenchSettings:
 
     def __post_init__(self) -> None:
         # A workload or a maze kind is a registered name, refused when made (as its option).
-        check_choices(self)
+        check_settings(self)
 
     def check(self) -> None:
         """Raises :class:`~mazesim.errors.InvalidArgumentError` naming the first bad field."""

@@ -11,11 +11,13 @@ from __future__ import annotations
 import argparse
 import dataclasses
 import decimal
+import functools
 import math
 from collections.abc import Callable, Mapping, Sequence
 from typing import Any
 
 from mazesim._paths import output_path
+from mazesim._settings import MAX_COUNT
 from mazesim.errors import _closest_name, _shown
 
 __all__ = [
@@ -40,8 +42,6 @@ __all__ = [
 MAX_SECONDS = 1e6
 #: The largest number a positive-number option takes.
 MAX_NUMBER = 1e9
-#: The largest count (of readings, episodes, envs, CPUs...) an option takes.
-MAX_COUNT = 2**31 - 1
 
 
 def _positive_float(text: str, what: str, largest: float) -> float:
@@ -180,6 +180,16 @@ def add_out_folder(parser: argparse.ArgumentParser, default: str, holding: str =
     parser.add_argument("--out", type=output_path, default=default, metavar="DIR", help=help_text)
 
 
+def _declared_range(meta: Mapping[str, Any]) -> Callable[[str], Any]:
+    """A field's option type from its declared range (``mazesim._settings.setting``'s ``least``
+    and ``most``): a whole number in it, or text when it declares none."""
+    if "least" not in meta and "most" not in meta:
+        return str
+    return functools.partial(
+        whole_number, smallest=meta.get("least", 0), largest=meta.get("most", MAX_COUNT)
+    )
+
+
 def add_setting_options(
     parser: argparse.ArgumentParser,
     settings: Any,
@@ -187,8 +197,8 @@ def add_setting_options(
 ) -> list[str]:
     """Adds an option ``--name`` for each field of the settings dataclass ``settings`` whose
     metadata has a ``help`` text: its default is the field's, its help the metadata's (with the
-    default, or the metadata's ``default_text``), its type from ``types`` (text by default), its
-    ``metavar`` and ``choices`` from the metadata.
+    default, or the metadata's ``default_text``), its type from ``types`` (else a whole number in
+    the field's declared range, else text), its ``metavar`` and ``choices`` from the metadata.
 
     Returns:
         The fields' names, in order (the ``argparse`` destinations).
@@ -206,7 +216,7 @@ def add_setting_options(
         if "choices" in meta:
             options["choices"] = meta["choices"]
         else:
-            options["type"] = types.get(setting.name, str)
+            options["type"] = types.get(setting.name, _declared_range(meta))
             options["metavar"] = meta["metavar"]
         parser.add_argument(f"--{setting.name.replace('_', '-')}", **options)
         names.append(setting.name)

@@ -22,9 +22,7 @@ from mazesim._paths import (
 from mazesim.cli._args import (
     add_out_folder,
     add_setting_options,
-    positive_int,
     seed_argument,
-    whole_number,
 )
 from mazesim.cli._help import examples
 from mazesim.cli.progress import add_progress_option, progress_display
@@ -34,18 +32,11 @@ if TYPE_CHECKING:
     from mazesim.batch import RobotChoice
     from mazesim.learn.train import RobotDraw, TrainSettings
 
-__all__ = ["run_train", "step_count"]
+__all__ = ["run_train"]
 
 DEFAULT_OUT = "mazesim-policy"
 #: What each training stage counts.
 _UNITS = {"lower": "rounds", "higher": "episodes", "flat": "steps"}
-#: The most env-steps a training run takes (the shipped navigator took 3.6e7).
-MAX_STEPS = 10**12
-
-
-def step_count(text: str) -> int:
-    """A number of env-steps: a whole number, optionally with a k or M suffix (``36M``)."""
-    return whole_number(text, 1, MAX_STEPS)
 
 
 def register(commands: Any) -> None:
@@ -76,8 +67,8 @@ def register(commands: Any) -> None:
             "lower level's budget (the shipped navigator: 36M).",
         ),
     )
-    option_types = {"envs": positive_int, "steps": step_count, "seed": seed_argument}
-    add_setting_options(train, defaults, option_types)
+    # --envs and --steps take their fields' declared ranges.
+    add_setting_options(train, defaults, {"seed": seed_argument})
     add_out_folder(train, DEFAULT_OUT, "the checkpoint and the navigator")
     train.add_argument(
         "--resume",

@@ -27,6 +27,7 @@ import numpy.typing as npt
 
 from mazesim._core import World
 from mazesim._seeding import stream
+from mazesim._settings import MAX_COUNT, bounded, check_settings
 from mazesim.actions import ACTION_CODES
 from mazesim.episodes import MAX_STEPS, EpisodeBatch
 from mazesim.learn import qlearning
@@ -62,16 +63,20 @@ class FlatConfig:
         max_steps: Control steps after which a training episode is cut short.
     """
 
-    gamma: float = 0.99
-    decision_steps: int = 10
-    epsilon_start: float = 0.3
-    greedy_share: float = 0.2
-    learning_rate: float = qlearning.LearningRate().initial
-    progress_reward: float = 10.0
-    step_reward: float = -0.02
-    contact_reward: float = -2.0
-    goal_reward: float = 10.0
-    max_steps: int = MAX_STEPS
+    gamma: float = bounded(0.99, least=0.0, most=1.0)
+    decision_steps: int = bounded(10, least=1, most=MAX_COUNT)
+    epsilon_start: float = bounded(0.3, least=0.0, most=1.0)
+    greedy_share: float = bounded(0.2, least=0.0, most=1.0)
+    # The learning rate's own rule: 0 < floor <= initial <= 0.5.
+    learning_rate: float = bounded(qlearning.LearningRate().initial, above=0.0, most=0.5)
+    progress_reward: float = bounded(10.0)
+    step_reward: float = bounded(-0.02)
+    contact_reward: float = bounded(-2.0)
+    goal_reward: float = bounded(10.0)
+    max_steps: int = bounded(MAX_STEPS, least=1, most=MAX_COUNT)
+
+    def __post_init__(self) -> None:
+        check_settings(self)
 
     def rate(self) -> qlearning.LearningRate:
         """The learning-rate schedule: the default one, started at :attr:`learning_rate`."""

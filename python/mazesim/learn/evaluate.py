@@ -42,7 +42,7 @@ import numpy.typing as npt
 
 from mazesim._core import RobotProfile, World, generate_maze
 from mazesim._seeding import stream_seeds
-from mazesim._settings import check_choices, setting
+from mazesim._settings import MAX_COUNT, MAX_SEED, check_settings, setting
 from mazesim.actions import ACTION_CODES, ACTIONS
 from mazesim.batch import RobotChoice, first_profile
 from mazesim.episodes import (
@@ -128,6 +128,10 @@ class EvaluationRecord:
         self.trace_lines, self.run, self.outcomes = other.trace_lines, other.run, other.outcomes
 
 
+#: The most unseen mazes one evaluation generates (each takes about 16 kB and an episode or more).
+MAX_UNSEEN_MAZES = 10_000
+
+
 @dataclass(frozen=True)
 class EvalSettings:
     """What ``mazesim eval`` measures: its options are these fields (the defaults are the only
@@ -147,11 +151,19 @@ class EvalSettings:
         default_text="the navigator's world",
     )
     episodes: int = setting(
-        200, "evaluation episodes (with 'random': spread over --mazes mazes)", "N"
+        200,
+        "evaluation episodes (with 'random': spread over --mazes mazes)",
+        "N",
+        least=1,
+        most=MAX_COUNT,
     )
-    mazes: int = setting(100, "unseen mazes of --world random", "M")
+    mazes: int = setting(100, "unseen mazes of --world random", "M", least=1, most=MAX_UNSEEN_MAZES)
     seed: int = setting(
-        0, "seed of the episodes' start jitter and sensor noise, and of the random mazes", "S"
+        0,
+        "seed of the episodes' start jitter and sensor noise, and of the random mazes",
+        "S",
+        least=0,
+        most=MAX_SEED,
     )
     events: RegisteredName = setting(
         "both",
@@ -159,7 +171,13 @@ class EvalSettings:
         "decoder, or both, reported side by side",
         choices=(*EVENT_SOURCES, "both"),
     )
-    max_steps: int = setting(MAX_STEPS, "control steps (64 ms) after which an episode fails", "N")
+    max_steps: int = setting(
+        MAX_STEPS,
+        "control steps (64 ms) after which an episode fails",
+        "N",
+        least=1,
+        most=MAX_COUNT,
+    )
     robot: str = setting(
         "seed",
         "the robot profile the navigator drives: a built-in name or a profile file "
@@ -168,16 +186,12 @@ class EvalSettings:
     )
 
     def __post_init__(self) -> None:
-        check_choices(self)
+        check_settings(self)
 
     @property
     def sources(self) -> list[str]:
         """The event sources to evaluate with, in order."""
         return list(EVENT_SOURCES) if self.events == "both" else [self.events]
-
-
-#: The most unseen mazes one evaluation generates (each takes about 16 kB and an episode or more).
-MAX_UNSEEN_MAZES = 10_000
 
 
 def unseen_mazes(count: int, seed: int) -> list[World]:

@@ -15,6 +15,7 @@ import numpy.typing as npt
 
 from mazesim._core import World
 from mazesim._seeding import stream
+from mazesim._settings import MAX_COUNT, MAX_SEED, bounded, check_settings
 from mazesim.batch import RobotChoice
 from mazesim.episodes import MAX_STEPS, EpisodeBatch, EpisodeResult, StartJitter, run_episodes
 from mazesim.learn.higher import (
@@ -39,12 +40,15 @@ class HigherTraining:
     adaptation to unseen worlds of :func:`mazesim.learn.evaluate.navigator_for` is
     :data:`mazesim.learn.evaluate.ADAPTATION`)."""
 
-    episodes_per_world: int = 400
-    envs_per_world: int = 32
-    epsilon_start: float = 0.2
-    greedy_share: float = 0.3
-    max_steps: int = MAX_STEPS
-    seed: int = 0
+    episodes_per_world: int = bounded(400, least=1, most=MAX_COUNT)
+    envs_per_world: int = bounded(32, least=1, most=MAX_COUNT)
+    epsilon_start: float = bounded(0.2, least=0.0, most=1.0)
+    greedy_share: float = bounded(0.3, least=0.0, most=1.0)
+    max_steps: int = bounded(MAX_STEPS, least=1, most=MAX_COUNT)
+    seed: int = bounded(0, least=0, most=MAX_SEED)
+
+    def __post_init__(self) -> None:
+        check_settings(self)
 
     def epsilon(self, episodes_started: npt.NDArray[np.int64]) -> npt.NDArray[np.float64]:
         """Exploration rate of each world after it started that many episodes."""

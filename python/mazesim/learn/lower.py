@@ -55,6 +55,7 @@ import numpy.typing as npt
 
 from mazesim._core import LowerRoundSettings, World, generate_maze, train_lower_round
 from mazesim._seeding import stream, stream_seeds
+from mazesim._settings import MAX_COUNT, MAX_SEED, bounded, check_settings
 from mazesim.actions import ACTION_CODES
 from mazesim.batch import RobotBatch, RobotChoice
 from mazesim.errors import InvalidArgumentError
@@ -140,21 +141,25 @@ def drive_on_when_blind(q: npt.NDArray[np.float64]) -> None:
     row[others & (row >= forward)] = forward - 1.0
 
 
+#: The most env-steps a training run takes (``mazesim train --steps``).
+MAX_TRAINING_STEPS = 10**12
+
+
 @dataclass(frozen=True)
 class LowerSettings:
     """What a lower-level training run does (all of it goes into the saved metadata)."""
 
-    num_envs: int = 2048
-    total_steps: int = 36_000_000
-    round_steps: int = 500
-    seed: int = 0
-    maze_pool: int = 200
-    gamma: float = 0.99
-    epsilon_start: float = 0.3
-    greedy_share: float = 0.2
-    decision_steps: int = 10
-    corridor_episode_steps: int = 350
-    control_step_ms: float = CONTROL_STEP_MS
+    num_envs: int = bounded(2048, least=1, most=MAX_COUNT)
+    total_steps: int = bounded(36_000_000, least=1, most=MAX_TRAINING_STEPS)
+    round_steps: int = bounded(500, least=1, most=MAX_COUNT)
+    seed: int = bounded(0, least=0, most=MAX_SEED)
+    maze_pool: int = bounded(200, least=1, most=MAX_COUNT)
+    gamma: float = bounded(0.99, least=0.0, most=1.0)
+    epsilon_start: float = bounded(0.3, least=0.0, most=1.0)
+    greedy_share: float = bounded(0.2, least=0.0, most=1.0)
+    decision_steps: int = bounded(10, least=1, most=MAX_COUNT)
+    corridor_episode_steps: int = bounded(350, least=1, most=MAX_COUNT)
+    control_step_ms: float = bounded(CONTROL_STEP_MS, above=0.0)
     rate: qlearning.LearningRate = field(default_factory=qlearning.LearningRate)
     #: The door sub-tasks' phases also count the distance driven (``mazesim train
     #: --door-distance``, :data:`mazesim.learn.subtasks.DISTANCE_PHASES`).
@@ -165,6 +170,9 @@ class LowerSettings:
     #: There, it holds its heading on the maze's grid instead of driving straight on (``mazesim
     #: train --hold-heading``, the core's ``navigator::heading_hold``); set with ``blind_forward``.
     hold_heading: bool = False
+
+    def __post_init__(self) -> None:
+        check_settings(self)
 
     @property
     def rounds(self) -> int:

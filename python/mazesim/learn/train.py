@@ -40,7 +40,7 @@ from typing import Any, Protocol, Union
 from mazesim import load_world
 from mazesim._core import World, builtin_world_names
 from mazesim._paths import shell_command
-from mazesim._settings import setting
+from mazesim._settings import MAX_COUNT, MAX_SEED, bounded, check_settings, setting
 from mazesim.batch import RobotChoice
 from mazesim.episodes import EpisodeResult, learning_problems, shortest_path_steps
 from mazesim.errors import InvalidArgumentError, _shown
@@ -51,6 +51,7 @@ from mazesim.learn.higher import HigherLevel
 from mazesim.learn.higher_training import HigherTraining, train_higher
 from mazesim.learn.learning_curve import CURVE_VALUES, CurveFn, episode_progress, lower_point
 from mazesim.learn.lower import (
+    MAX_TRAINING_STEPS,
     LowerSettings,
     LowerTables,
     LowerTrainer,
@@ -96,17 +97,27 @@ class TrainSettings:
         "NAME|PATH",
     )
     envs: int = setting(
-        LowerSettings.num_envs, "robots stepped at once while training the lower level", "N"
+        LowerSettings.num_envs,
+        "robots stepped at once while training the lower level",
+        "N",
+        least=1,
+        most=MAX_COUNT,
     )
     steps: int = setting(
-        LowerSettings.total_steps, "env-steps of lower-level training, e.g. 36M or 500k", "K"
+        LowerSettings.total_steps,
+        "env-steps of lower-level training, e.g. 36M or 500k",
+        "K",
+        least=1,
+        most=MAX_TRAINING_STEPS,
     )
-    seed: int = setting(LowerSettings.seed, "seed of everything random in the run", "S")
-    maze_pool: int = LowerSettings.maze_pool
-    higher_episodes: int = HigherTraining.episodes_per_world
-    higher_envs: int = HigherTraining.envs_per_world
-    higher_max_steps: int = HigherTraining.max_steps
-    checkpoint_seconds: float = 30.0
+    seed: int = setting(
+        LowerSettings.seed, "seed of everything random in the run", "S", least=0, most=MAX_SEED
+    )
+    maze_pool: int = bounded(LowerSettings.maze_pool, least=1, most=MAX_COUNT)
+    higher_episodes: int = bounded(HigherTraining.episodes_per_world, least=1, most=MAX_COUNT)
+    higher_envs: int = bounded(HigherTraining.envs_per_world, least=1, most=MAX_COUNT)
+    higher_max_steps: int = bounded(HigherTraining.max_steps, least=1, most=MAX_COUNT)
+    checkpoint_seconds: float = bounded(30.0, least=0.0)
     #: The domain randomisation's ranges as ``axis=low:high,...`` (``mazesim train --randomise``;
     #: :func:`train` then draws the robots with a :data:`RobotDraw`), empty for the seed robot.
     randomise: str = ""
@@ -120,6 +131,9 @@ class TrainSettings:
     #: the core's ``navigator::heading_hold``), in the lower level's training and the higher
     #: level's.
     hold_heading: bool = False
+
+    def __post_init__(self) -> None:
+        check_settings(self)
 
     def lower(self) -> LowerSettings:
         """The lower-level stage's settings."""
