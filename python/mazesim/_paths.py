@@ -48,6 +48,7 @@ __all__ = [
     "shell_command",
     "unknown_name_or_file",
     "unknown_robot_profile",
+    "utf8_text",
     "windows_separators",
     "world_files_beside",
     "writing_alone",
@@ -339,10 +340,7 @@ def read_text(
         with io.TextIOWrapper(open_input(file, what), encoding="utf-8-sig") as handle:
             text = handle.read(most + 1)
     except UnicodeDecodeError as error:
-        raise not_text(
-            f"{file}: expected {what} in UTF-8 text, found {_other_encoding(error)}: save it as "
-            'UTF-8 (an editor\'s "Save as", encoding UTF-8) and give it again'
-        ) from None
+        raise not_text(_not_utf8(file, what, error)) from None
     except MazesimIOError:
         raise
     except OSError as error:
@@ -350,6 +348,23 @@ def read_text(
     if len(text) > most:
         raise not_text(f"{file}: expected {what} of at most {most} characters, found more")
     return text
+
+
+def utf8_text(data: bytes, file: str, what: str, not_text: Callable[[str], MazesimError]) -> str:
+    """The text of a file's ``data`` read whole, as :func:`read_text` reads a file: a byte-order
+    mark at its start left out, and a file in another encoding refused by ``not_text`` saying
+    which (the one rule of every reader of text files, those that read the bytes first too)."""
+    try:
+        return data.removeprefix(b"\xef\xbb\xbf").decode("utf-8")
+    except UnicodeDecodeError as error:
+        raise not_text(_not_utf8(file, what, error)) from None
+
+
+def _not_utf8(file: str, what: str, error: UnicodeDecodeError) -> str:
+    return (
+        f"{file}: expected {what} in UTF-8 text, found {_other_encoding(error)}: save it as "
+        'UTF-8 (an editor\'s "Save as", encoding UTF-8) and give it again'
+    )
 
 
 def _other_encoding(error: UnicodeDecodeError) -> str:

@@ -14,6 +14,7 @@ import pytest
 import mazesim
 from mazesim.cli import build_parser, main
 from mazesim.distributed.config import load_sweep_config
+from mazesim.errors import PolicyFormatError
 from mazesim.webots.keyboard import read_keys
 
 SWEEP = """[sweep]
@@ -231,3 +232,32 @@ def test_a_navigator_folder_written_with_backslashes_gets_the_path_meant(
     assert "did you mean 'runs/navigator'?" in error
     with pytest.raises(mazesim.MazesimError, match="did you mean 'runs/navigator'"):
         mazesim.learn.load_policy("runs\\navigator")
+
+
+@pytest.mark.parametrize(
+    ("encoding", "found"),
+    [
+        ("utf-8-sig", None),
+        ("utf-16", "found UTF-16 text (it starts with the byte-order mark FF FE)"),
+    ],
+)
+def test_a_navigators_metadata_saved_by_a_windows_editor(
+    tmp_path: Path, encoding: str, found: str | None
+) -> None:
+    """policy.json opened and saved again in a Windows editor: read with its byte-order mark as
+    every text reader of mazesim's reads one, or refused naming the encoding (the metadata
+    reader said "'utf-8' codec can't decode byte 0xef" of both)."""
+    from mazesim.learn import load_policy, save_policy
+
+    folder = tmp_path / "nav"
+    policy = load_policy()
+    save_policy(policy, folder)
+    metadata = folder / "policy.json"
+    metadata.write_text(metadata.read_text(encoding="utf-8"), encoding=encoding)
+    if found is None:
+        loaded = load_policy(folder)
+        assert (loaded.world_sha256, loaded.training) == (policy.world_sha256, policy.training)
+        return
+    with pytest.raises(PolicyFormatError) as refused:
+        load_policy(folder)
+    assert found in str(refused.value) and "save it as UTF-8" in str(refused.value)

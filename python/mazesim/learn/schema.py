@@ -101,10 +101,11 @@ def parse_metadata(data: bytes, where: str) -> Any:
         raise PolicyFormatError(
             f"{where}: expected at most {MAX_METADATA_BYTES} bytes of metadata, found {len(data)}"
         )
+    from mazesim._paths import utf8_text
+
+    text = utf8_text(data, where, "JSON metadata", PolicyFormatError)
     try:
-        document = json.loads(data.decode("utf-8"))
-    except UnicodeDecodeError as error:
-        raise PolicyFormatError(f"{where}: expected UTF-8 text, found {error}") from None
+        document = json.loads(text)
     except RecursionError:
         raise PolicyFormatError(
             f"{where}: expected JSON nested at most {MAX_DEPTH} deep, found deeper"

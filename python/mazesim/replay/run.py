@@ -47,7 +47,7 @@ import numpy.typing as npt
 
 from mazesim._atomic import atomic_file
 from mazesim._core import RobotProfile, World, robot_profile_names
-from mazesim._paths import _other_encoding, found_kind, read_input
+from mazesim._paths import found_kind, read_input, utf8_text
 from mazesim.errors import InvalidArgumentError, MazesimError, RunFormatError, _shown
 from mazesim.replay.run_fields import RunFields
 
@@ -463,16 +463,8 @@ def load_run(path: str | os.PathLike[str]) -> RecordedRun:
             data = _decompressed(data, MAX_RUN_BYTES, too_large, name)
         if len(data) > MAX_RUN_BYTES:
             raise too_large
-        # A byte-order mark (a Windows editor's) is no part of the text, as every reader of
-        # text files of mazesim's takes it.
-        data = data.removeprefix(b"\xef\xbb\xbf")
         _check_structure(data, name)
-        values = json.loads(data.decode("utf-8"))
-    except UnicodeDecodeError as error:
-        raise RunFormatError(
-            f"{name}: expected a mazesim run (JSON) in UTF-8 text, found "
-            f"{_other_encoding(error)}: save it as UTF-8 and give it again"
-        ) from None
+        values = json.loads(utf8_text(data, name, "a mazesim run (JSON)", RunFormatError))
     except RecursionError:
         raise RunFormatError(
             f"{name}: expected a mazesim run (JSON), found deeper nesting than any run has"
