@@ -246,7 +246,8 @@ def test_a_navigators_metadata_saved_by_a_windows_editor(
 ) -> None:
     """policy.json opened and saved again in a Windows editor: read with its byte-order mark as
     every text reader of mazesim's reads one, or refused naming the encoding (the metadata
-    reader said "'utf-8' codec can't decode byte 0xef" of both)."""
+    reader called the first "not valid JSON (truncated or corrupt?)" and the second "'utf-8'
+    codec can't decode byte 0xff")."""
     from mazesim.learn import load_policy, save_policy
 
     folder = tmp_path / "nav"
