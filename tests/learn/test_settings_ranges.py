@@ -15,6 +15,7 @@ from typing import Any
 import pytest
 
 from mazesim._settings import MAX_COUNT, RANGE_KEYS
+from mazesim.benchmark.steady import BenchSettings
 from mazesim.cli import build_parser
 from mazesim.errors import InvalidArgumentError, WrongTypeError
 from mazesim.learn.baseline import FlatConfig
@@ -22,8 +23,17 @@ from mazesim.learn.evaluate import EvalSettings
 from mazesim.learn.higher_training import HigherTraining
 from mazesim.learn.lower import LowerSettings
 from mazesim.learn.train import TrainSettings
+from mazesim.transfer.study import StudyOptions
 
-SETTINGS = (TrainSettings, EvalSettings, LowerSettings, HigherTraining, FlatConfig)
+SETTINGS = (
+    TrainSettings,
+    EvalSettings,
+    LowerSettings,
+    HigherTraining,
+    FlatConfig,
+    BenchSettings,
+    StudyOptions,
+)
 
 
 def _ranged() -> list[tuple[type, Field[Any]]]:
@@ -69,6 +79,8 @@ def test_the_settings_of_training_and_evaluation_declare_their_ranges() -> None:
         "LowerSettings.gamma",
         "HigherTraining.max_steps",
         "FlatConfig.goal_reward",
+        "BenchSettings.warmup_steps",
+        "StudyOptions.episodes",
     ):
         assert name in named
 
@@ -103,6 +115,8 @@ def test_a_count_of_another_kind_is_a_type_error() -> None:
         ("eval", "--mazes", "10001", 10_000),
         ("eval", "--episodes", "0", 1),
         ("eval", "--max-steps", "0", 1),
+        ("bench", "--blocks", "0", 1),
+        ("bench", "--threads", "-1", 0),
     ],
 )
 def test_an_option_takes_its_fields_range(

@@ -139,8 +139,10 @@ def test_a_document_off_the_schema_is_refused_naming_the_field(
 
 
 def test_bad_options_are_refused(policy: TrainedPolicy) -> None:
-    with pytest.raises(InvalidArgumentError, match="at least one episode"):
-        _study(policy, StudyOptions(axes=parse_axes("latency"), episodes=0))
+    with pytest.raises(InvalidArgumentError, match="StudyOptions.episodes to be a whole number"):
+        StudyOptions(axes=parse_axes("latency"), episodes=0)
+    with pytest.raises(InvalidArgumentError, match="at least one axis"):
+        _study(policy, StudyOptions(axes=()))
     with pytest.raises(UnknownNameError, match="expected events to be one of truth, robust"):
         StudyOptions(axes=parse_axes("latency"), events="psychic")
     with pytest.raises(PolicyFormatError, match="learned world 'seed-maze'"):

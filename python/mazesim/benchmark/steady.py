@@ -23,8 +23,8 @@ from typing import Any
 import numpy as np
 
 import mazesim
-from mazesim._settings import check_settings, setting
-from mazesim.errors import InvalidArgumentError, RegisteredName, _shown
+from mazesim._settings import MAX_COUNT, MAX_SEED, bounded, check_settings, setting
+from mazesim.errors import InvalidArgumentError, RegisteredName
 
 from .memory import engine_bytes, resident_bytes
 from .workloads import WORKLOADS, Workload, make_workload
@@ -70,7 +70,7 @@ class BenchSettings:
         seed: Seeds the mazes, the sensor noise and the random workload.
     """
 
-    envs: int = 1024
+    envs: int = bounded(1024, least=1, most=MAX_COUNT)
     workload: RegisteredName = setting(
         "braitenberg",
         "the wheel-speed rule: braitenberg (wander clear of walls), contact (about "
@@ -80,38 +80,36 @@ class BenchSettings:
     mazes: RegisteredName = setting(
         "distinct", "a generated maze per env, or one shared by all", choices=MAZE_KINDS
     )
-    threads: int = setting(0, "worker threads", "T", default_text="0 = all cores")
-    warmup_steps: int = MIN_WARMUP_STEPS
-    block_steps: int = setting(300, "steps per timed block", "S")
-    blocks: int = setting(5, "timed blocks", "B")
-    episode_steps: int = setting(
-        1000, "episode step limit; an env is reset when it reaches it", "E"
+    threads: int = setting(
+        0, "worker threads", "T", default_text="0 = all cores", least=0, most=MAX_COUNT
     )
-    steps_per_call: int = 1
-    seed: int = setting(0, "seeds the mazes, the sensor noise and the random workload", "S")
+    warmup_steps: int = bounded(MIN_WARMUP_STEPS, least=MIN_WARMUP_STEPS, most=MAX_COUNT)
+    block_steps: int = setting(300, "steps per timed block", "S", least=1, most=MAX_COUNT)
+    blocks: int = setting(5, "timed blocks", "B", least=1, most=MAX_COUNT)
+    episode_steps: int = setting(
+        1000,
+        "episode step limit; an env is reset when it reaches it",
+        "E",
+        least=1,
+        most=MAX_COUNT,
+    )
+    steps_per_call: int = bounded(1, least=1, most=MAX_COUNT)
+    seed: int = setting(
+        0,
+        "seeds the mazes, the sensor noise and the random workload",
+        "S",
+        least=0,
+        most=MAX_SEED,
+    )
 
     def __post_init__(self) -> None:
-        # A workload or a maze kind is a registered name, refused when made (as its option).
+        # A workload or a maze kind is a registered name, and each count in its range, refused
+        # when made (as its option).
         check_settings(self)
 
     def check(self) -> None:
-        """Raises :class:`~mazesim.errors.InvalidArgumentError` naming the first bad field."""
-        counts = {
-            "envs": (self.envs, 1),
-            "threads": (self.threads, 0),
-            "warmup_steps": (self.warmup_steps, MIN_WARMUP_STEPS),
-            "block_steps": (self.block_steps, 1),
-            "blocks": (self.blocks, 1),
-            "episode_steps": (self.episode_steps, 1),
-            "steps_per_call": (self.steps_per_call, 1),
-            "seed": (self.seed, 0),
-        }
-        for name, (value, smallest) in counts.items():
-            if not isinstance(value, int) or isinstance(value, bool) or value < smallest:
-                raise InvalidArgumentError(
-                    f"benchmark setting {name}: expected a whole number of at least {smallest}, "
-                    f"found {_shown(value)}"
-                )
+        """Raises :class:`~mazesim.errors.InvalidArgumentError` naming the first setting that
+        does not fit the others (each is in its own range since the settings were made)."""
         if self.mazes == "distinct" and self.envs > MAX_DISTINCT_MAZES:
             raise InvalidArgumentError(
                 f"benchmark setting envs: expected at most {MAX_DISTINCT_MAZES} envs with distinct "

@@ -17,6 +17,7 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 from mazesim._core import World
+from mazesim._settings import MAX_COUNT, MAX_SEED, bounded, check_settings
 from mazesim.episodes import EVENT_SOURCES
 from mazesim.errors import InvalidArgumentError, RegisteredName, _known_name
 from mazesim.learn.evaluate import navigator_for
@@ -54,28 +55,25 @@ class StudyOptions:
     """
 
     axes: tuple[Axis, ...] = AXES
-    episodes: int = DEFAULT_EPISODES
+    episodes: int = bounded(DEFAULT_EPISODES, least=1, most=MAX_COUNT)
     pairs: bool = True
-    seed: int = 0
+    seed: int = bounded(0, least=0, most=MAX_SEED)
     events: RegisteredName = "robust"
-    max_steps: int = DEFAULT_MAX_STEPS
-    threads: int = 0
+    max_steps: int = bounded(DEFAULT_MAX_STEPS, least=1, most=MAX_COUNT)
+    threads: int = bounded(0, least=0, most=MAX_COUNT)
     odometry: RegisteredName = "encoders"
 
     def __post_init__(self) -> None:
         _known_name(self.events, "events", EVENT_SOURCES)
         _known_name(self.odometry, "odometry", ODOMETRY_SOURCES)
+        check_settings(self)
 
     def check(self) -> None:
-        """Raises :class:`InvalidArgumentError` on a setting out of range (an unknown source of
-        events or odometry is refused when the options are made)."""
+        """Raises :class:`InvalidArgumentError` when no axis is studied (an unknown source of
+        events or odometry, and a count out of its range, are refused when the options are
+        made)."""
         if not self.axes:
             raise InvalidArgumentError("expected at least one axis, found none")
-        if self.episodes < 1 or self.max_steps < 1:
-            raise InvalidArgumentError(
-                f"expected at least one episode and one step, found {self.episodes} episode(s) "
-                f"and {self.max_steps} step(s)"
-            )
 
 
 def _harshness(place: int, cell: Cell) -> tuple[float, float, float, int]:
