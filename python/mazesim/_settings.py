@@ -50,7 +50,8 @@ def setting(
 ) -> Any:
     """A dataclass field of ``default`` offered as a command-line option: ``help`` its text,
     ``metavar`` its value's name (or ``choices`` its values), ``default_text`` the default shown
-    in place of the value, ``least`` and ``most`` its range (the option's too)."""
+    in place of the value, ``least`` and ``most`` its range (a whole-number field's option takes
+    it too)."""
     metadata: dict[str, Any] = {"help": help, **_range(least, most, None)}
     for key, value in (("metavar", metavar), ("choices", choices), ("default_text", default_text)):
         if value is not None:

@@ -180,10 +180,12 @@ def add_out_folder(parser: argparse.ArgumentParser, default: str, holding: str =
     parser.add_argument("--out", type=output_path, default=default, metavar="DIR", help=help_text)
 
 
-def _declared_range(meta: Mapping[str, Any]) -> Callable[[str], Any]:
+def _declared_range(setting: dataclasses.Field[Any]) -> Callable[[str], Any]:
     """A field's option type from its declared range (``mazesim._settings.setting``'s ``least``
-    and ``most``): a whole number in it, or text when it declares none."""
-    if "least" not in meta and "most" not in meta:
+    and ``most``): a whole number in it for a whole-number field; else text (a number field of
+    another kind names its type in ``types``, or the dataclass's check refuses it)."""
+    meta = setting.metadata
+    if type(setting.default) is not int or ("least" not in meta and "most" not in meta):
         return str
     return functools.partial(
         whole_number, smallest=meta.get("least", 0), largest=meta.get("most", MAX_COUNT)
@@ -216,7 +218,7 @@ def add_setting_options(
         if "choices" in meta:
             options["choices"] = meta["choices"]
         else:
-            options["type"] = types.get(setting.name, _declared_range(meta))
+            options["type"] = types.get(setting.name, _declared_range(setting))
             options["metavar"] = meta["metavar"]
         parser.add_argument(f"--{setting.name.replace('_', '-')}", **options)
         names.append(setting.name)
