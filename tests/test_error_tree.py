@@ -44,12 +44,12 @@ def test_an_array_of_the_wrong_shape_is_an_invalid_argument_and_still_an_index_e
 
 
 def test_a_failure_no_check_names_says_what_was_expected_and_what_was_found() -> None:
-    from mazesim.learn.discretise import encode_state
+    from mazesim.learn.discretise import format_levels
 
     with pytest.raises(InvalidArgumentError) as caught:
-        encode_state([float("nan")] * 6)
+        format_levels([float("nan")] * 6)
     message = str(caught.value)
-    assert message.startswith("encode_state: the arguments do not fit: ValueError")
+    assert message.startswith("format_levels: the arguments do not fit: ValueError")
     assert message.endswith(
         "; expected levels: an array of numbers; found levels=[nan, nan, nan, nan, nan, nan]"
     )

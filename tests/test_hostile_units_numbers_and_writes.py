@@ -22,7 +22,9 @@ import numpy as np
 import pytest
 
 import mazesim
-from mazesim import _atomic
+import mazesim.learn
+import mazesim.odometry
+from mazesim import _atomic, _core
 
 WORLD = mazesim.load_world("seed-maze")
 TOML = WORLD.to_toml()
@@ -179,11 +181,35 @@ BUFFERS_AND_SNAPSHOTS: dict[str, Callable[[], Any]] = {
     "snapshot_as_text": _snapshot(lambda b: b.hex()),  # type: ignore[arg-type, return-value]
 }
 
+
+def _bounds(low: float, high: float) -> tuple[Any, Any]:
+    """Bounds of the seed maze robot's 11 readings, every pair ``low``..``high``."""
+    return np.full(11, low, np.float32), np.full(11, high, np.float32)
+
+
+#: Values that were taken without a word and gave a result nobody asked for: an angle of
+#: infinity wrapped to NaN (None read as NaN), clamp bounds with low above high that clamped
+#: every reading to high, a level of 1.7 cut to 1.
+SILENT: dict[str, Callable[[], Any]] = {
+    "wrap_angle_inf": lambda: mazesim.odometry.wrap_angle([0.5, math.inf]),
+    "wrap_angle_none": lambda: mazesim.odometry.wrap_angle(None),  # type: ignore[arg-type]
+    "step_observe_low_above_high": lambda: mazesim.Simulator(WORLD).step_observe(
+        1.0, 1.0, *_bounds(1.0, 0.0)
+    ),
+    "step_observe_nan_bound": lambda: mazesim.Simulator(WORLD).step_observe(
+        1.0, 1.0, *_bounds(math.nan, 1.0)
+    ),
+    "step_bounds_low_above_high": lambda: _core.StepBounds(*_bounds(5.0, -5.0), 6.28),
+    "encode_state_fraction": lambda: mazesim.learn.encode_state([1.7, 0, 0, 0, 0, 0]),
+    "decode_state_fraction": lambda: mazesim.learn.decode_state(4.9),
+}
+
 REFUSED: dict[str, Callable[[], Any]] = {
     **WORLD_TEXTS,
     **SETTINGS,
     **NUMBERS,
     **BUFFERS_AND_SNAPSHOTS,
+    **SILENT,
 }
 
 

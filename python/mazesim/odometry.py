@@ -21,12 +21,23 @@ from __future__ import annotations
 import numpy as np
 import numpy.typing as npt
 
+from mazesim.errors import InvalidArgumentError, _shown
+
 __all__ = ["advance", "wrap_angle"]
 
 
 def wrap_angle(angle: npt.ArrayLike) -> npt.NDArray[np.float64]:
-    """Angles (radians) wrapped into ``[-pi, pi)``."""
-    return (np.asarray(angle, dtype=np.float64) + np.pi) % (2.0 * np.pi) - np.pi
+    """Angles (radians) wrapped into ``[-pi, pi)``.
+
+    Raises:
+        InvalidArgumentError: An angle is not finite (infinity has no direction: numpy's
+            remainder would make it NaN with a warning).
+    """
+    array = np.asarray(angle, dtype=np.float64)
+    if not np.isfinite(array).all():
+        found = float(array[~np.isfinite(array)].flat[0])
+        raise InvalidArgumentError(f"expected finite angles in radians, found {_shown(found)}")
+    return (array + np.pi) % (2.0 * np.pi) - np.pi
 
 
 def advance(

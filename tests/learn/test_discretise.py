@@ -53,12 +53,31 @@ def test_state_encoding_round_trips_every_state() -> None:
 
 
 def test_encoding_refuses_bad_levels_and_states() -> None:
-    with pytest.raises(InvalidArgumentError, match="levels from 0 to 3"):
+    with pytest.raises(InvalidArgumentError, match="levels as whole numbers from 0 to 3"):
         encode_state([0, 1, 2, 3, 4, 0])
     with pytest.raises(InvalidArgumentError, match="6 levels"):
         encode_state([0, 1, 2])
-    with pytest.raises(InvalidArgumentError, match="states from 0 to 4095"):
+    with pytest.raises(InvalidArgumentError, match="states as whole numbers from 0 to 4095"):
         decode_state(4096)
+
+
+@pytest.mark.parametrize(
+    ("levels", "found"),
+    [([1.7, 0, 0, 0, 0, 0], "1.7"), ([0, 0, np.nan, 0, 0, 0], "nan"), ([[0] * 5 + [-0.5]], "-0.5")],
+)
+def test_encoding_refuses_levels_that_are_not_whole(levels: list, found: str) -> None:
+    # numpy's int64 cast would cut 1.7 to level 1 and state 4.9 to state 4 without a word.
+    with pytest.raises(InvalidArgumentError, match=f"whole numbers from 0 to 3, found {found}"):
+        encode_state(levels)
+    assert encode_state([2.0, 0, 0, 0, 0, True]) == 2 + 4**5
+
+
+def test_decoding_refuses_states_that_are_not_whole() -> None:
+    with pytest.raises(InvalidArgumentError, match="found 4.9"):
+        decode_state(4.9)
+    with pytest.raises(InvalidArgumentError, match="found inf"):
+        decode_state([1, np.inf])
+    assert decode_state(np.float32(5.0)).tolist() == [1, 1, 0, 0, 0, 0]
 
 
 def test_volts_to_cm_equals_the_core_inversion_bit_for_bit() -> None:

@@ -1,6 +1,7 @@
 //! `Simulator` for Python: the robots of one world (one in most worlds), per-robot calls taking
 //! a robot index that defaults to robot 0.
 
+use mazesim_core::tasks::check_ordered;
 use mazesim_core::{SimConfig, Simulator, Swarm};
 use numpy::{PyArray1, PyArray2, PyArrayMethods};
 use pyo3::prelude::*;
@@ -131,6 +132,7 @@ impl PySimulator {
         let contiguous = |name: &str| invalid(format!("expected {name} to be contiguous"));
         let low = low.as_slice().map_err(|_| contiguous("low"))?;
         let high = high.as_slice().map_err(|_| contiguous("high"))?;
+        check_ordered(low, high, "reading bounds").py()?;
         self.stepped_within(left, right, low, high)
     }
 

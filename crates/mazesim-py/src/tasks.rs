@@ -2,7 +2,8 @@
 //! (`mazesim_core::tasks`), read from and written to numpy arrays.
 
 use mazesim_core::tasks::{
-    FeatureKinds, Features, GoalMode, GoalTable, Grid, Place, MAX_FEATURE_CELLS, SIDES, TARGETS,
+    check_ordered, FeatureKinds, Features, GoalMode, GoalTable, Grid, Place, MAX_FEATURE_CELLS,
+    SIDES, TARGETS,
 };
 use numpy::{PyArray1, PyArray2, PyArrayMethods};
 use pyo3::prelude::*;
@@ -309,6 +310,7 @@ impl PyStepBounds {
                 .map_or(0, |s| s[0]);
             let low = copied::<f32>(low, "low", "float32", &[width])?;
             let high = copied::<f32>(high, "high", "float32", &[width])?;
+            check_ordered(&low, &high, "reading bounds").py()?;
             let max_speed = max_speed.value("max_speed")?;
             if !(max_speed.is_finite() && max_speed > 0.0) {
                 return Err(invalid(format!(

@@ -97,6 +97,25 @@ pub struct Features {
     goals: Vec<GoalTable>,
 }
 
+/// Refuses clamp bounds `low`..`high` (paired by index) of which a pair is not ordered: a
+/// `low` above its `high`, or either NaN, would clamp every value to one end, unseen.
+///
+/// # Errors
+/// [`Error::InvalidArgument`] naming `what`, the first such pair and its index.
+pub fn check_ordered(low: &[f32], high: &[f32], what: &str) -> Result<()> {
+    match low
+        .iter()
+        .zip(high)
+        .position(|(l, h)| l.partial_cmp(h).is_none_or(std::cmp::Ordering::is_gt))
+    {
+        Some(i) => Err(Error::InvalidArgument(format!(
+            "expected {what} with low <= high (neither NaN), found low[{i}] = {}, high[{i}] = {}",
+            low[i], high[i]
+        ))),
+        None => Ok(()),
+    }
+}
+
 impl Features {
     /// Features of `num_envs` environments whose sensors' largest values are `scale`, clamped to
     /// `low`..`high` (one bound per value of an observation, [`Features::width`] of each).
@@ -128,14 +147,13 @@ impl Features {
                 "expected every sensor scale to be a finite positive number, found {s} at {i}"
             )));
         }
-        if let Some(i) =
-            (0..width).find(|&i| !(low[i].is_finite() && high[i].is_finite() && low[i] <= high[i]))
-        {
+        if let Some(i) = (0..width).find(|&i| !(low[i].is_finite() && high[i].is_finite())) {
             return Err(Error::InvalidArgument(format!(
-                "expected finite feature bounds with low <= high, found low[{i}] = {}, high[{i}] = {}",
+                "expected finite feature bounds, found low[{i}] = {}, high[{i}] = {}",
                 low[i], high[i]
             )));
         }
+        check_ordered(&low, &high, "feature bounds")?;
         let place = Place {
             goal: [0.0; 2],
             extent: 1.0,

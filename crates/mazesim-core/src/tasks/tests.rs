@@ -121,3 +121,18 @@ fn issue_35_non_finite_scales_and_bounds_are_refused_so_every_feature_stays_fini
     }
     assert!(Features::new(1, kinds, vec![1.0], low, high).is_ok());
 }
+
+#[test]
+fn bounds_out_of_order_or_nan_are_refused_naming_the_first_pair() {
+    assert!(check_ordered(&[0.0, -1.0], &[0.0, f32::INFINITY], "bounds").is_ok());
+    for (low, high, index) in [
+        ([0.0, 2.0], [1.0, 1.0], 1),
+        ([f32::NAN, 0.0], [1.0, 1.0], 0),
+        ([0.0, 0.0], [1.0, f32::NAN], 1),
+    ] {
+        let message = check_ordered(&low, &high, "bounds")
+            .unwrap_err()
+            .to_string();
+        assert!(message.contains(&format!("low[{index}]")), "{message}");
+    }
+}
