@@ -50,7 +50,9 @@ def test_bad_placements_name_the_robot() -> None:
         batch.place([1], [(0.0, 0.125, 0.0)], [0])  # on the west wall
     with pytest.raises(InvalidArgumentError, match="starts"):
         batch.simulator.set_starts_at(np.array([0, 1]), np.zeros((1, 3)))
-    with pytest.raises(InvalidArgumentError, match="world indices from 0 to 0, found 1"):
+    with pytest.raises(
+        InvalidArgumentError, match="world indices as whole numbers from 0 to 0, found 1"
+    ):
         RobotBatch([world], [0, 1])
 
 

@@ -25,6 +25,9 @@ import mazesim
 import mazesim.learn
 import mazesim.odometry
 from mazesim import _atomic, _core
+from mazesim.batch import RobotBatch
+from mazesim.episodes import EpisodeBatch
+from mazesim.learn.qlearning import LearningRate, batch_update, epsilon_greedy, greedy
 
 WORLD = mazesim.load_world("seed-maze")
 TOML = WORLD.to_toml()
@@ -202,6 +205,27 @@ SILENT: dict[str, Callable[[], Any]] = {
     "step_bounds_low_above_high": lambda: _core.StepBounds(*_bounds(5.0, -5.0), 6.28),
     "encode_state_fraction": lambda: mazesim.learn.encode_state([1.7, 0, 0, 0, 0, 0]),
     "decode_state_fraction": lambda: mazesim.learn.decode_state(4.9),
+    # Indices: numpy cut 1.5 to 1 and took -1 as the last row, action, world or robot.
+    "greedy_negative_state": lambda: greedy(np.zeros((4, 3)), [-1]),
+    "epsilon_greedy_fractional_state": lambda: epsilon_greedy(
+        np.zeros((4, 3)), [1.5], 0.0, np.random.default_rng(0)
+    ),
+    "batch_update_fractional_action": lambda: batch_update(
+        np.zeros((4, 3)),
+        np.zeros((4, 3), np.int64),
+        [0],
+        [0.5],
+        [1.0],
+        [0],
+        0.0,
+        LearningRate(),
+    ),
+    "robot_batch_fractional_world": lambda: RobotBatch([WORLD], [0.5]),
+    "robot_batch_negative_action": lambda: RobotBatch([WORLD], [0]).speeds_of([-1]),
+    "robot_batch_place_fractional_env": lambda: RobotBatch([WORLD], [0, 0]).place(
+        [0.5], [WORLD.start], [0]
+    ),
+    "episode_batch_start_negative_env": lambda: EpisodeBatch([WORLD]).start([-1], [0]),
 }
 
 REFUSED: dict[str, Callable[[], Any]] = {

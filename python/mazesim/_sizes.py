@@ -19,9 +19,9 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-from mazesim.errors import InvalidArgumentError, _a_type
+from mazesim.errors import InvalidArgumentError, _a_type, _shown
 
-__all__ = ["MOST_ENVS", "bounded_array", "bounded_list", "size_of"]
+__all__ = ["MOST_ENVS", "bounded_array", "bounded_list", "index_array", "size_of"]
 
 #: Most environments of a batch (the core's ``limits::MAX_ENVS``).
 MOST_ENVS = 1 << 24
@@ -43,9 +43,12 @@ def size_of(value: Any) -> int | None:
         return None
 
 
-def bounded_array(value: Any, name: str, dtype: npt.DTypeLike, most: int) -> npt.NDArray[Any]:
-    """``value`` as a numpy array of ``dtype``, refused before conversion when it holds more than
-    ``most`` values; one numpy cannot convert is refused too, naming ``name``."""
+def bounded_array(
+    value: Any, name: str, dtype: npt.DTypeLike | None, most: int
+) -> npt.NDArray[Any]:
+    """``value`` as a numpy array of ``dtype`` (None: numpy's choice), refused before
+    conversion when it holds more than ``most`` values; one numpy cannot convert is refused
+    too, naming ``name``."""
     size = size_of(value)
     if size is not None and size > most:
         raise InvalidArgumentError(
@@ -55,7 +58,8 @@ def bounded_array(value: Any, name: str, dtype: npt.DTypeLike, most: int) -> npt
         array = np.asarray(value, dtype=dtype)
     except (TypeError, ValueError, OverflowError) as error:
         raise InvalidArgumentError(
-            f"expected {name} to be {most} or fewer values of {np.dtype(dtype)}, "
+            f"expected {name} to be {most} or fewer values of "
+            f"{'numbers' if dtype is None else np.dtype(dtype)}, "
             f"found {_a_type(value)}: {str(error)[:200]}"
         ) from error
     if array.size > most:
@@ -81,3 +85,41 @@ def bounded_list(value: Any, name: str, most: int) -> list[Any]:
     if len(items) > most:
         raise InvalidArgumentError(f"expected {name} to hold at most {most} items, found more")
     return items
+
+
+def index_array(
+    value: Any, name: str, count: int, most: int | None = None
+) -> npt.NDArray[np.int64]:
+    """``value`` as int64 indices into ``count`` things (actions, states, levels, robots),
+    refused unless each is a whole number from 0 to ``count - 1``: numpy would cut 1.7 to 1
+    and take -1 as the last one, without a word. Booleans count as 0 and 1; floats that are
+    whole (``2.0``) are taken. With ``most``, more than ``most`` values are refused before
+    conversion (:func:`bounded_array`).
+
+    Raises:
+        InvalidArgumentError: An index is out of range, not whole, or not a number; or there
+            are more than ``most``.
+    """
+    try:
+        array = np.asarray(value) if most is None else bounded_array(value, name, None, most)
+    except (TypeError, ValueError) as error:  # ragged nesting, unconvertible objects
+        raise InvalidArgumentError(
+            f"expected {name} as whole numbers from 0 to {count - 1}, found {_a_type(value)}: "
+            f"{str(error)[:200]}"
+        ) from None
+    if array.dtype.kind not in "biuf":
+        raise InvalidArgumentError(
+            f"expected {name} as whole numbers from 0 to {count - 1}, found an array of dtype "
+            f"{array.dtype}"
+        )
+    if array.dtype.kind != "f" and (array.size == 0 or (array.min() >= 0 and array.max() < count)):
+        return array.astype(np.int64, copy=False)  # the usual case, in two passes
+    fit = (array >= 0) & (array < count)
+    if array.dtype.kind == "f":
+        fit &= array == np.floor(array)
+    if not np.all(fit):
+        found = array[~fit].flat[0].item()
+        raise InvalidArgumentError(
+            f"expected {name} as whole numbers from 0 to {count - 1}, found {_shown(found)}"
+        )
+    return array.astype(np.int64, copy=False)

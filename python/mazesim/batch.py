@@ -33,7 +33,7 @@ import numpy.typing as npt
 
 from mazesim._core import BatchSimulator, RobotProfile, World
 from mazesim._hot_paths import checks_own_arguments
-from mazesim._sizes import MOST_ENVS, bounded_array, bounded_list
+from mazesim._sizes import MOST_ENVS, bounded_array, bounded_list, index_array
 from mazesim.actions import WHEEL_SPEED_FRACTIONS
 from mazesim.errors import InvalidArgumentError, _bounded_number
 
@@ -97,20 +97,15 @@ class RobotBatch:
         threads: int = 0,
     ) -> None:
         self.worlds = bounded_list(worlds, "worlds", MOST_ENVS)
-        self.world_of_env = bounded_array(world_of_env, "world_of_env", np.int64, MOST_ENVS)
-        self.world_of_env = self.world_of_env.ravel().copy()
-        count = self.world_of_env.size
+        world_index = bounded_array(world_of_env, "world_of_env", None, MOST_ENVS)
+        count = world_index.size
         if not self.worlds or count < 1:
             raise InvalidArgumentError(
                 f"expected at least one world and one robot, found {len(self.worlds)} world(s) "
                 f"and {count} robot(s)"
             )
-        low, high = int(self.world_of_env.min()), int(self.world_of_env.max())
-        if low < 0 or high >= len(self.worlds):
-            bad = low if low < 0 else high
-            raise InvalidArgumentError(
-                f"expected world indices from 0 to {len(self.worlds) - 1}, found {bad}"
-            )
+        world_index = index_array(world_index, "world indices", len(self.worlds))
+        self.world_of_env = world_index.ravel().copy()
         self.num_envs = count
         self.control_step_ms = float(control_step_ms)
         self.simulator = BatchSimulator(
@@ -132,7 +127,7 @@ class RobotBatch:
 
     def speeds_of(self, actions: npt.ArrayLike) -> npt.NDArray[np.float32]:
         """(N, 2) wheel speeds of discrete actions (indices into the action table)."""
-        return self.wheel_speeds[np.asarray(actions, dtype=np.int64)]
+        return self.wheel_speeds[index_array(actions, "actions", len(self.wheel_speeds))]
 
     @checks_own_arguments
     def step(self, actions: npt.ArrayLike) -> None:
@@ -167,7 +162,7 @@ class RobotBatch:
         Their counters restart and their rows of the buffers hold their first observations;
         the other robots are not touched.
         """
-        robots = bounded_array(envs, "envs", np.int64, self.num_envs).ravel()
+        robots = index_array(envs, "envs", self.num_envs, most=self.num_envs).ravel()
         starts = bounded_array(poses, "poses", np.float64, 3 * robots.size).reshape(robots.size, 3)
         self.simulator.set_starts_at(robots, np.ascontiguousarray(starts))
         mask = np.zeros(self.num_envs, dtype=bool)

@@ -81,7 +81,7 @@ def test_batch_update_refuses_mismatched_inputs() -> None:
     visits = np.zeros((2, 2), dtype=np.int64)
     with pytest.raises(InvalidArgumentError, match="as many actions"):
         batch_update(q, visits, [0, 1], [0], [0.0, 0.0], [0, 0], 0.9, LearningRate())
-    with pytest.raises(InvalidArgumentError, match="states in"):
+    with pytest.raises(InvalidArgumentError, match="states as whole numbers from 0 to 1, found 2"):
         batch_update(q, visits, [2], [0], [0.0], [0], 0.9, LearningRate())
 
 

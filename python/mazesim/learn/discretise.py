@@ -37,7 +37,8 @@ import numpy as np
 import numpy.typing as npt
 
 from mazesim._core import RobotProfile
-from mazesim.errors import InvalidArgumentError, _shown
+from mazesim._sizes import index_array
+from mazesim.errors import InvalidArgumentError
 
 __all__ = [
     "LEVEL_EDGES_CM",
@@ -129,19 +130,6 @@ def _discretised(
     return cm.reshape(array.shape), levels.reshape(array.shape)
 
 
-def _whole_values(values: npt.ArrayLike, what: str, below: int) -> npt.NDArray[np.int64]:
-    """``values`` as int64, refused unless each is a whole number from 0 to ``below - 1``: a
-    level of 1.7 or a state of 4.9 is no level or state, and numpy would cut it to 1 or 4."""
-    array = _real_values(values, what)
-    fit = (array >= 0) & (array < below) & (array == np.floor(array))
-    if not fit.all():
-        found = float(array[~fit].flat[0])
-        raise InvalidArgumentError(
-            f"expected {what} as whole numbers from 0 to {below - 1}, found {_shown(found)}"
-        )
-    return array.astype(np.int64)
-
-
 def _real_values(values: npt.ArrayLike, what: str) -> npt.NDArray[np.float64]:
     """``values`` as float64, refused unless they are real numbers (bools, integers, floats):
     complex numbers, text and objects are no readings, and numpy would drop an imaginary part or
@@ -171,7 +159,7 @@ def encode_state(levels: npt.ArrayLike) -> npt.NDArray[np.int64] | int:
         InvalidArgumentError: The last axis is not 6 long or a level is not a whole number
             from 0 to 3.
     """
-    array = _whole_values(levels, "levels", NUM_LEVELS)
+    array = index_array(levels, "levels", NUM_LEVELS)
     if array.ndim == 0 or array.shape[-1] != NUM_SENSORS:
         raise InvalidArgumentError(
             f"expected {NUM_SENSORS} levels per state (last axis), found shape {array.shape}"
@@ -192,7 +180,7 @@ def decode_state(state: npt.ArrayLike) -> npt.NDArray[np.int64]:
     Raises:
         InvalidArgumentError: A state is not a whole number in ``[0, 4096)``.
     """
-    array = _whole_values(state, "states", NUM_STATES)
+    array = index_array(state, "states", NUM_STATES)
     return (array[..., None] // _PLACE_VALUES) % NUM_LEVELS
 
 

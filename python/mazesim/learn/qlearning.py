@@ -42,6 +42,7 @@ import numpy.typing as npt
 
 from mazesim._checks import MOST_ARRAY_VALUES
 from mazesim._core import q_batch_update
+from mazesim._sizes import index_array
 from mazesim.errors import InvalidArgumentError
 
 __all__ = [
@@ -91,7 +92,7 @@ def greedy(
     Raises:
         InvalidArgumentError: The rows asked for would hold more than ``MOST_ARRAY_VALUES`` values.
     """
-    indices = np.asarray(states, dtype=np.int64)
+    indices = index_array(states, "states", np.shape(q)[0])
     if indices.size * max(1, math.prod(np.shape(q)[1:])) > MOST_ARRAY_VALUES:
         raise InvalidArgumentError(
             f"greedy: expected states to ask for at most {MOST_ARRAY_VALUES} Q-values, found "
@@ -117,7 +118,7 @@ def epsilon_greedy(
     Returns:
         (N,) action indices.
     """
-    indices = np.asarray(states, dtype=np.int64)
+    indices = index_array(states, "states", q.shape[0])
     explore = rng.random(indices.shape) < epsilon
     random_actions = rng.integers(0, q.shape[-1], size=indices.shape)
     return np.where(explore, random_actions, greedy(q, indices)).astype(np.int64)
@@ -150,25 +151,22 @@ def batch_update(
             by default): the value of a next state is the best of these.
 
     Raises:
-        InvalidArgumentError: The arrays differ in length, or an index is out of the table.
+        InvalidArgumentError: The arrays differ in length, or a state or action is not a whole
+            number inside the table.
     """
-    state_array = np.asarray(states, dtype=np.int64).ravel()
-    action_array = np.asarray(actions, dtype=np.int64).ravel()
+    if not (q.flags.c_contiguous and visits.flags.c_contiguous and visits.shape == q.shape):
+        raise InvalidArgumentError("expected C-contiguous Q and visit tables of one shape")
+    num_states, num_actions = q.shape
+    state_array = index_array(states, "states", num_states).ravel()
+    action_array = index_array(actions, "actions", num_actions).ravel()
     count = state_array.size
     if action_array.size != count or np.size(rewards) != count:
         raise InvalidArgumentError(
             f"expected as many actions and rewards as states ({count}), "
             f"found {action_array.size} and {np.size(rewards)}"
         )
-    if not (q.flags.c_contiguous and visits.flags.c_contiguous and visits.shape == q.shape):
-        raise InvalidArgumentError("expected C-contiguous Q and visit tables of one shape")
     if count == 0:
         return
-    num_states, num_actions = q.shape
-    if state_array.min() < 0 or state_array.max() >= num_states:
-        raise InvalidArgumentError(f"expected states in [0, {num_states}), found out of range")
-    if action_array.min() < 0 or action_array.max() >= num_actions:
-        raise InvalidArgumentError(f"expected actions in [0, {num_actions}), found out of range")
     reward_array = np.ascontiguousarray(np.ravel(rewards), dtype=np.float64)
     factors = np.ascontiguousarray(
         np.broadcast_to(np.asarray(bootstrap, dtype=np.float64).ravel(), (count,)), dtype=np.float64
