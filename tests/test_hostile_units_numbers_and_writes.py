@@ -28,6 +28,7 @@ from mazesim import _atomic, _core
 from mazesim.batch import RobotBatch
 from mazesim.episodes import EpisodeBatch
 from mazesim.learn.qlearning import LearningRate, batch_update, epsilon_greedy, greedy
+from mazesim.maze import breadth_first_distances
 
 WORLD = mazesim.load_world("seed-maze")
 TOML = WORLD.to_toml()
@@ -224,6 +225,9 @@ SILENT: dict[str, Callable[[], Any]] = {
     "robot_batch_negative_action": lambda: RobotBatch([WORLD], [0]).speeds_of([-1]),
     "robot_batch_place_fractional_env": lambda: RobotBatch([WORLD], [0, 0]).place(
         [0.5], [WORLD.start], [0]
+    ),
+    "breadth_first_source_off_the_grid": lambda: breadth_first_distances(
+        np.ones((1, 2, 3, 4), bool), np.array([[0, -1]])
     ),
     "episode_batch_start_negative_env": lambda: EpisodeBatch([WORLD]).start([-1], [0]),
 }

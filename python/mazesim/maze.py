@@ -22,6 +22,7 @@ import numpy as np
 import numpy.typing as npt
 
 from mazesim._core import RobotProfile, Simulator, World
+from mazesim._sizes import index_array
 from mazesim.errors import InvalidArgumentError, _shown
 
 __all__ = [
@@ -414,7 +415,14 @@ def breadth_first_distances(
     cells = rows * cols
     opened = (open_sides & _inside(rows, cols)).reshape(count, cells, _SIDES).tolist()
     offsets = list(enumerate(_STEP[d][0] + _STEP[d][1] * cols for d in range(_SIDES)))
-    sources = np.asarray(sources, dtype=np.int64).reshape(count, 2)
+    sources = np.asarray(sources).reshape(count, 2)
+    sources = np.stack(
+        [
+            index_array(sources[:, 0], "source columns", cols),
+            index_array(sources[:, 1], "source rows", rows),
+        ],
+        axis=1,
+    )
     distances = np.empty((count, cells), dtype=np.int64)
     for maze, (column, row) in enumerate(sources.tolist()):
         sides = opened[maze]
