@@ -22,6 +22,7 @@ import numpy as np
 import pytest
 
 import mazesim
+import mazesim._sizes
 import mazesim.learn
 import mazesim.odometry
 from mazesim import _atomic, _core
@@ -229,6 +230,11 @@ SILENT: dict[str, Callable[[], Any]] = {
     "breadth_first_source_off_the_grid": lambda: breadth_first_distances(
         np.ones((1, 2, 3, 4), bool), np.array([[0, -1]])
     ),
+    # Seeds: numpy wrapped an int64 -1 to 2**64 - 1 and cut 1.5 to 1.
+    "robot_batch_reset_negative_seed": lambda: RobotBatch([WORLD], [0]).reset(seeds=np.array([-1])),
+    "robot_batch_place_fractional_seed": lambda: RobotBatch([WORLD], [0]).place(
+        [0], [WORLD.start], [1.5]
+    ),
     "episode_batch_start_negative_env": lambda: EpisodeBatch([WORLD]).start([-1], [0]),
 }
 
@@ -239,6 +245,14 @@ REFUSED: dict[str, Callable[[], Any]] = {
     **BUFFERS_AND_SNAPSHOTS,
     **SILENT,
 }
+
+
+def test_seeds_up_to_two_to_the_64_beside_small_ones_are_taken_exactly() -> None:
+    # numpy reads [2**64 - 1, 0] as floats (2**64 - 1 rounding up to 2**64); the seed check
+    # takes the Python ints as they are.
+    batch = RobotBatch([WORLD], [0, 0])
+    batch.reset(seeds=[2**64 - 1, 0])
+    assert mazesim._sizes.seed_array([2**64 - 1, 0], "seeds", 2).tolist() == [2**64 - 1, 0]
 
 
 @pytest.mark.parametrize("case", sorted(REFUSED))

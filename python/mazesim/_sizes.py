@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import itertools
 import math
+import warnings
 from typing import Any
 
 import numpy as np
@@ -21,7 +22,7 @@ import numpy.typing as npt
 
 from mazesim.errors import InvalidArgumentError, _a_type, _shown
 
-__all__ = ["MOST_ENVS", "bounded_array", "bounded_list", "index_array", "size_of"]
+__all__ = ["MOST_ENVS", "bounded_array", "bounded_list", "index_array", "seed_array", "size_of"]
 
 #: Most environments of a batch (the core's ``limits::MAX_ENVS``).
 MOST_ENVS = 1 << 24
@@ -100,26 +101,61 @@ def index_array(
         InvalidArgumentError: An index is out of range, not whole, or not a number; or there
             are more than ``most``.
     """
+    return _whole_numbers(value, name, count, most, np.int64)
+
+
+def seed_array(value: Any, name: str, most: int) -> npt.NDArray[np.uint64]:
+    """``value`` as uint64 seeds (at most ``most`` of them), refused unless each is a whole
+    number from 0 to 2**64 - 1: numpy would cut 1.5 to 1, read the text ``"3"`` as 3 and wrap
+    an int64 -1 to 2**64 - 1.
+
+    Raises:
+        InvalidArgumentError: A seed is negative, too large, not whole, or not a number; or
+            there are more than ``most``.
+    """
+    return _whole_numbers(value, name, 1 << 64, most, np.uint64)
+
+
+def _whole_numbers(
+    value: Any, name: str, below: int, most: int | None, dtype: type[np.integer[Any]]
+) -> npt.NDArray[Any]:
+    """``value`` as an array of ``dtype``, each a whole number from 0 to ``below - 1``."""
     try:
         array = np.asarray(value) if most is None else bounded_array(value, name, None, most)
     except (TypeError, ValueError) as error:  # ragged nesting, unconvertible objects
         raise InvalidArgumentError(
-            f"expected {name} as whole numbers from 0 to {count - 1}, found {_a_type(value)}: "
+            f"expected {name} as whole numbers from 0 to {below - 1}, found {_a_type(value)}: "
             f"{str(error)[:200]}"
         ) from None
     if array.dtype.kind not in "biuf":
         raise InvalidArgumentError(
-            f"expected {name} as whole numbers from 0 to {count - 1}, found an array of dtype "
+            f"expected {name} as whole numbers from 0 to {below - 1}, found an array of dtype "
             f"{array.dtype}"
         )
-    if array.dtype.kind != "f" and (array.size == 0 or (array.min() >= 0 and array.max() < count)):
-        return array.astype(np.int64, copy=False)  # the usual case, in two passes
-    fit = (array >= 0) & (array < count)
+    if array.dtype.kind != "f" and (array.size == 0 or (array.min() >= 0 and array.max() < below)):
+        return array.astype(dtype, copy=False)  # the usual case, in two passes
+    fit = (array >= 0) & (array < below)
     if array.dtype.kind == "f":
         fit &= array == np.floor(array)
+        if not isinstance(value, np.ndarray):
+            # Python ints past 2**63 beside small ones are read as floats (2**64 - 1 rounds up
+            # to 2**64); taken exactly, they may fit.
+            exact = _exactly(value, dtype)
+            if exact is not None and np.array_equal(exact.astype(np.float64), array):
+                return exact
     if not np.all(fit):
         found = array[~fit].flat[0].item()
         raise InvalidArgumentError(
-            f"expected {name} as whole numbers from 0 to {count - 1}, found {_shown(found)}"
+            f"expected {name} as whole numbers from 0 to {below - 1}, found {_shown(found)}"
         )
-    return array.astype(np.int64, copy=False)
+    return array.astype(dtype, copy=False)
+
+
+def _exactly(value: Any, dtype: type[np.integer[Any]]) -> npt.NDArray[Any] | None:
+    """``value`` (Python numbers) converted to ``dtype`` by numpy, None if it cannot be."""
+    try:
+        with np.errstate(invalid="ignore"), warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            return np.asarray(value, dtype=dtype)
+    except (TypeError, ValueError, OverflowError):
+        return None

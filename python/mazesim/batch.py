@@ -33,7 +33,7 @@ import numpy.typing as npt
 
 from mazesim._core import BatchSimulator, RobotProfile, World
 from mazesim._hot_paths import checks_own_arguments
-from mazesim._sizes import MOST_ENVS, bounded_array, bounded_list, index_array
+from mazesim._sizes import MOST_ENVS, bounded_array, bounded_list, index_array, seed_array
 from mazesim.actions import WHEEL_SPEED_FRACTIONS
 from mazesim.errors import InvalidArgumentError, _bounded_number
 
@@ -147,7 +147,7 @@ class RobotBatch:
             mask: (N,) bool, the robots to reset.
             seeds: (N,) noise seeds of the reset robots (the others' are ignored).
         """
-        rows = None if seeds is None else bounded_array(seeds, "seeds", np.uint64, self.num_envs)
+        rows = None if seeds is None else seed_array(seeds, "seeds", self.num_envs)
         self.simulator.reset(
             self.observations, self.poses, self.colliding, self.crossings, mask=mask, seeds=rows
         )
@@ -168,7 +168,7 @@ class RobotBatch:
         mask = np.zeros(self.num_envs, dtype=bool)
         mask[robots] = True
         all_seeds = np.zeros(self.num_envs, dtype=np.uint64)
-        all_seeds[robots] = bounded_array(seeds, "seeds", np.uint64, robots.size).ravel()
+        all_seeds[robots] = seed_array(seeds, "seeds", robots.size).ravel()
         self.reset(mask, all_seeds)
 
     def collisions(self) -> npt.NDArray[np.int64]:
