@@ -28,6 +28,7 @@ import mazesim.odometry
 from mazesim import _atomic, _core
 from mazesim.batch import RobotBatch
 from mazesim.episodes import EpisodeBatch
+from mazesim.learn.higher import HigherLearner, HigherLevel
 from mazesim.learn.qlearning import LearningRate, batch_update, epsilon_greedy, greedy
 from mazesim.maze import breadth_first_distances
 
@@ -234,6 +235,13 @@ SILENT: dict[str, Callable[[], Any]] = {
     "robot_batch_reset_negative_seed": lambda: RobotBatch([WORLD], [0]).reset(seeds=np.array([-1])),
     "robot_batch_place_fractional_seed": lambda: RobotBatch([WORLD], [0]).place(
         [0], [WORLD.start], [1.5]
+    ),
+    "higher_level_fractional_world": lambda: HigherLevel([[1, 2]]).states([0.5], [1]),
+    "higher_learner_negative_option": lambda: HigherLearner(HigherLevel([[1, 2]]), 2).decide(
+        [0], [0], [-1]
+    ),
+    "higher_learner_forget_fractional_env": lambda: HigherLearner(HigherLevel([[1, 2]]), 2).forget(
+        [1.5]
     ),
     "episode_batch_start_negative_env": lambda: EpisodeBatch([WORLD]).start([-1], [0]),
 }

@@ -27,6 +27,7 @@ from collections.abc import Sequence
 import numpy as np
 import numpy.typing as npt
 
+from mazesim._sizes import index_array
 from mazesim.errors import InvalidArgumentError
 from mazesim.learn import qlearning
 from mazesim.learn.subtasks import NUM_SUBTASKS
@@ -102,7 +103,7 @@ class HigherLevel:
 
     def states(self, worlds: npt.ArrayLike, events: npt.ArrayLike) -> npt.NDArray[np.int64]:
         """Flat state numbers (``world * num_states + state``) of events; -1 for an unknown id."""
-        world = np.asarray(worlds, dtype=np.int64)
+        world = index_array(worlds, "worlds", len(self.checkpoint_ids))
         event = np.asarray(events, dtype=np.int64)
         checkpoint = np.abs(event)
         known = (event != 0) & (checkpoint < self._index.shape[1])
@@ -150,11 +151,11 @@ class HigherLearner:
 
         Robots whose event is unknown (state -1) close nothing and keep their decision open.
         """
-        robots = np.asarray(envs, dtype=np.int64)
+        robots = index_array(envs, "envs", self.state.size)
         new_states = np.asarray(states, dtype=np.int64)
         known = new_states >= 0
         robots, new_states = robots[known], new_states[known]
-        chosen = np.asarray(options, dtype=np.int64)[known]
+        chosen = index_array(options, "options", NUM_SUBTASKS)[known]
         open_ = self.state[robots] >= 0
         self._update(robots[open_], new_states[open_], bootstrap=1.0)
         self.state[robots] = new_states
@@ -163,7 +164,7 @@ class HigherLearner:
 
     def finish(self, envs: npt.ArrayLike) -> None:
         """Ends the episodes of ``envs``: their open decisions learn what they earned, no more."""
-        robots = np.asarray(envs, dtype=np.int64)
+        robots = index_array(envs, "envs", self.state.size)
         robots = robots[self.state[robots] >= 0]
         self._update(robots, np.zeros(robots.size, dtype=np.int64), bootstrap=0.0)
         self.state[robots] = -1
@@ -171,7 +172,7 @@ class HigherLearner:
 
     def forget(self, envs: npt.ArrayLike) -> None:
         """Drops the open decisions of ``envs`` without learning (a fresh episode)."""
-        robots = np.asarray(envs, dtype=np.int64)
+        robots = index_array(envs, "envs", self.state.size)
         self.state[robots] = -1
         self.earned[robots] = 0.0
 

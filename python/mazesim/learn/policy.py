@@ -26,6 +26,7 @@ import numpy as np
 import numpy.typing as npt
 
 from mazesim._core import Navigator, RobotProfile
+from mazesim._sizes import index_array
 from mazesim.actions import ACTION_CODES, WHEEL_SPEED_FRACTIONS
 from mazesim.errors import InvalidArgumentError
 from mazesim.learn.discretise import NUM_SENSORS, volts_to_cm
@@ -103,7 +104,7 @@ class HierarchicalPolicy:
 
     def reset(self, envs: npt.ArrayLike, poses: npt.ArrayLike) -> None:
         """Starts robots ``envs`` afresh, in "Corridors and Corners", at their poses."""
-        robots = np.ascontiguousarray(np.asarray(envs, dtype=np.int64).ravel())
+        robots = np.ascontiguousarray(index_array(envs, "envs", self.num_envs).ravel())
         self.navigator.reset(robots, np.ascontiguousarray(poses, dtype=np.float64))
 
     def subtask_arrays(self) -> dict[str, npt.NDArray[Any]]:
