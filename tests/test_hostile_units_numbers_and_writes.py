@@ -407,6 +407,25 @@ def test_a_wheel_command_not_finite_is_refused_when_given() -> None:
     assert sim.steps == 1
 
 
+@pytest.mark.parametrize(
+    ("field", "value", "named"),
+    [("axle_length", "1e-300", "axle_length"), ("wheel_radius", "1e9", "wheel_radius")],
+)
+def test_a_profile_too_fast_names_the_field_that_makes_it_so(
+    field: str, value: str, named: str
+) -> None:
+    # A top turn rate beyond the physics comes of a short axle: the refusal names that field
+    # (it named wheel_radius, whose value was the e-puck's own).
+    text = mazesim.RobotProfile.builtin("e-puck").to_toml()
+    lines = [
+        f"{field} = {value}" if line.startswith(f"{field} =") else line
+        for line in text.splitlines()
+    ]
+    with pytest.raises(mazesim.WorldFormatError) as raised:
+        mazesim.RobotProfile.from_toml("\n".join(lines))
+    assert raised.value.field == named, str(raised.value)
+
+
 def test_a_maze_of_ten_metre_cells_is_still_taken() -> None:
     layout = mazesim.MazeLayout(cell_size=10.0)
     assert layout.cell_size == 10.0

@@ -390,7 +390,7 @@ impl RobotProfile {
         };
         profile
             .check_top_speeds()
-            .map_err(|message| bad("wheel_radius".into(), message))?;
+            .map_err(|(field, message)| bad(field.into(), message))?;
         profile
             .check_noise_scale()
             .map_err(|message| bad("noise_scale".into(), message))?;
@@ -421,20 +421,29 @@ impl RobotProfile {
     }
 
     /// Refuses a robot faster than `limits::MAX_ROBOT_SPEED` or turning faster than
-    /// `limits::MAX_TURN_RATE`: its motion would leave what the physics resolves.
-    pub(crate) fn check_top_speeds(&self) -> std::result::Result<(), String> {
+    /// `limits::MAX_TURN_RATE`: its motion would leave what the physics resolves. The error
+    /// names the field a file would change: `wheel_radius` for the top speed, `axle_length`
+    /// for the turn rate (a top speed within its limit turns too fast only on a short axle).
+    pub(crate) fn check_top_speeds(&self) -> std::result::Result<(), (&'static str, String)> {
         use crate::limits::{MAX_ROBOT_SPEED, MAX_TURN_RATE};
         let (speed, turn) = self.top_speeds();
         if !(speed.is_finite() && speed <= MAX_ROBOT_SPEED) {
-            return Err(format!(
-                "expected a robot whose top speed (wheel radius x max wheel speed x motor gain) \
-                 is at most {MAX_ROBOT_SPEED} m/s, found {speed} m/s"
+            return Err((
+                "wheel_radius",
+                format!(
+                    "expected a robot whose top speed (wheel radius x max wheel speed x motor \
+                     gain) is at most {MAX_ROBOT_SPEED} m/s, found {speed} m/s"
+                ),
             ));
         }
         if !(turn.is_finite() && turn <= MAX_TURN_RATE) {
-            return Err(format!(
-                "expected a robot whose top turn rate (2 x top speed / axle length) is at most \
-                 {MAX_TURN_RATE} rad/s, found {turn} rad/s"
+            return Err((
+                "axle_length",
+                format!(
+                    "expected a robot whose top turn rate (2 x top speed / axle length) is at \
+                     most {MAX_TURN_RATE} rad/s, found {turn} rad/s (axle length {} m)",
+                    self.axle_length
+                ),
             ));
         }
         Ok(())

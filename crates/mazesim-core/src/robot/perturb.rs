@@ -213,6 +213,7 @@ impl RobotProfile {
             })?;
         }
         out.check_top_speeds()
+            .map_err(|(_, message)| message)
             .and_then(|()| out.check_noise_scale())
             .map_err(|message| {
                 Error::InvalidArgument(format!("{message} after the perturbation"))
