@@ -689,6 +689,30 @@ def test_sharps_infra_red_ranger_protos_are_the_distance_sensors_they_hold() -> 
     assert far.getLookupTable()[:3] == [0.15, 2.75, 0.015]
 
 
+def test_robotis_lds01_is_the_lidar_it_holds_and_an_unknown_proto_among_children_is_said() -> None:
+    """Webots' ``RobotisLds01`` among a plain robot's children is the Lidar "LDS-01" of its
+    PROTO (360 ranges all round, 0.12 to 3.5 m): it was dropped without a word, and the
+    controller's ``getDevice('LDS-01')`` found nothing. A PROTO mazesim does not read there
+    is named in a warning, as one in a slot is."""
+    from mazesim.webots import import_wbt_text
+
+    text = (
+        "#VRML_SIM R2023b utf8\n"
+        'Robot {\n  name "e-puck"\n  children [\n    DEF TURRET_SLOT Pose {\n'
+        "      translation 0 0 0.07\n      children [\n        RobotisLds01 { }\n"
+        "        HokuyoUnheardOf { }\n      ]\n    }\n  ]\n}\n"
+    )
+    _, report = import_wbt_text(text)
+    lidar = {d["name"]: d for d in report["extension_devices"]}["LDS-01"]
+    assert lidar["type"] == "Lidar"
+    fields = lidar["fields"]
+    assert (fields["horizontalResolution"], fields["numberOfLayers"]) == (360, 1)
+    assert (fields["minRange"], fields["maxRange"], fields["fieldOfView"]) == (0.12, 3.5, 6.28318)
+    assert lidar["translation"] == pytest.approx([0.0, 0.0, 0.09])
+    said = [w for w in report["warnings"] if "in the robot's children" in w]
+    assert len(said) == 1 and "HokuyoUnheardOf" in said[0], report["warnings"]
+
+
 def test_a_distance_sensor_the_world_adds_gives_its_aperture() -> None:
     """A DistanceSensor the world mounts (not one of the E-puck's own) answers getAperture, as a
     C controller's link asks of every distance sensor: the world's ``aperture``, else the

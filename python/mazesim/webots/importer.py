@@ -292,7 +292,10 @@ def mean_colour(path: str) -> tuple[float, float, float]:
 #: What a texture that cannot be read leaves, by the kind of its owner.
 _UNREAD = {
     "floor": "the floor is left bare",
-    "wall": "the wall reflects as white and a camera sees it grey",
+    "wall": (
+        "the wall reflects as white and a camera sees it in its appearance's own colour "
+        "(grey without one)"
+    ),
 }
 
 _Value = TypeVar("_Value")

@@ -31,7 +31,9 @@
 //! the factor of that colour's red times the appearance's own (the texture's colour multiplies
 //! the appearance's, as Webots picks it), with the appearance's roughness, and the camera's
 //! colour of that mean colour times the appearance's; without the image the wall stays white
-//! and grey. The floor of a colour read reflects by its appearance too (a white floor of
+//! to the sensors and a camera sees the appearance's own colour (the texture counted white). A
+//! `Wall`'s, a `SolidBox`'s or a `RectangleArena`'s textured appearance field is listed the
+//! same way. The floor of a colour read reflects by its appearance too (a white floor of
 //! `roughness 1`, 0.6); one of no colour read (a texture, an appearance PROTO), as white.
 
 use std::collections::BTreeMap;
@@ -183,24 +185,28 @@ impl<'d> Importer<'d> {
         }
     }
 
-    /// The look of a Shape whose appearance is a `PBRAppearance` or an `Appearance` with an
-    /// `ImageTexture` of a url: white, its texture listed in `wall_textures`.
-    fn textured_look(&mut self, shape: &'d Node) -> Option<Look> {
-        let &appearance = self.nodes(shape, "appearance").first()?;
+    /// The look of a node whose appearance field `field` (a Shape's `appearance`, a `Wall`'s
+    /// or a `SolidBox`'s) is a `PBRAppearance` or an `Appearance` with an `ImageTexture` of a
+    /// url: its texture listed in `wall_textures`; until [`WbtImport::shade_walls`] gives it
+    /// the image's colour, the camera sees the appearance's own colour (the texture counted
+    /// white, as the infra-red sensors count it; none for white) and the sensors a white
+    /// surface.
+    fn textured_look(&mut self, holder: &'d Node, field: &str) -> Option<Look> {
+        let &appearance = self.nodes(holder, field).first()?;
         let appearance = self.node(appearance);
-        let field = match appearance.type_name.as_str() {
+        let texture_field = match appearance.type_name.as_str() {
             "PBRAppearance" => "baseColorMap",
             "Appearance" => "texture",
             _ => return None,
         };
-        let urls = self.image_texture_urls(appearance, field)?;
+        let urls = self.image_texture_urls(appearance, texture_field)?;
         let (red, roughness) = self.appearance_red(appearance);
-        let colour = if field == "baseColorMap" {
+        let colour = if texture_field == "baseColorMap" {
             self.vector(appearance, "baseColor", [1.0; 3])
         } else {
             [1.0; 3]
         };
-        let owner = self.label(shape);
+        let owner = self.label(holder);
         self.wall_textures.push(WallTexture {
             urls,
             owner,
@@ -209,7 +215,16 @@ impl<'d> Importer<'d> {
             roughness,
             candidates: Vec::new(),
         });
+        let seen = colour.map(|c| {
+            if c.is_finite() {
+                c.clamp(0.0, 1.0)
+            } else {
+                1.0
+            }
+        });
+        // White, which a camera draws as the grey of a white wall, stays no colour.
         Some(Look {
+            colour: (seen != [1.0; 3]).then_some(seen),
             texture: Some(self.wall_textures.len() - 1),
             ..Look::UNREAD
         })
@@ -282,7 +297,7 @@ impl<'d> Importer<'d> {
                         return Some(look);
                     }
                     if textured.is_none() {
-                        *textured = self.textured_look(node);
+                        *textured = self.textured_look(node, "appearance");
                     }
                 }
                 "Pose" | "Transform" | "Group" => {
@@ -297,7 +312,7 @@ impl<'d> Importer<'d> {
         if bounding.type_name == "Shape" {
             let look = self.field_look(bounding, "appearance");
             if look.is_none() && textured.is_none() {
-                *textured = self.textured_look(bounding);
+                *textured = self.textured_look(bounding, "appearance");
             }
             return look;
         }
@@ -305,14 +320,17 @@ impl<'d> Importer<'d> {
     }
 
     /// How a known PROTO's collision boxes look: as a `RectangleArena`'s `wallAppearance`, a
-    /// `Wall`'s or a `SolidBox`'s `appearance` (their defaults are textured: no colour, white).
+    /// `Wall`'s or a `SolidBox`'s `appearance`, a textured one as a textured Shape's (their
+    /// defaults, left out of the instance, are textured PROTOs: no colour, white).
     pub fn proto_look(&mut self, node: &'d Node) -> Look {
-        let look = match node.type_name.as_str() {
-            "RectangleArena" => self.field_look(node, "wallAppearance"),
-            "Wall" | "SolidBox" => self.field_look(node, "appearance"),
-            _ => None,
+        let field = match node.type_name.as_str() {
+            "RectangleArena" => "wallAppearance",
+            "Wall" | "SolidBox" => "appearance",
+            _ => return Look::UNREAD,
         };
-        look.unwrap_or(Look::UNREAD)
+        let look = self.field_look(node, field);
+        look.or_else(|| self.textured_look(node, field))
+            .unwrap_or(Look::UNREAD)
     }
 
     /// The look of a floor (a `RectangleArena`'s `floorAppearance`, a `Floor`'s `appearance`,
@@ -342,8 +360,8 @@ impl WbtImport {
     /// colour (red, green, blue in [0, 1]) keyed by the candidate file it was read from (the
     /// first candidate found counts): the reflection factor `f = 0.2 + 0.8 (mean red x the
     /// appearance's red) (1 - 0.5 roughness)` and the colour a camera sees, the mean colour
-    /// times the appearance's. A wall whose texture has no image stays white (and grey to a
-    /// camera). Call it once, after the import.
+    /// times the appearance's. A wall whose texture has no image stays white (and white to a
+    /// camera, unless its appearance has a colour of its own). Call it once, after the import.
     pub fn shade_walls(&mut self, mean_colours: &BTreeMap<String, [f64; 3]>) {
         let shades: Vec<Option<Look>> = self
             .wall_textures
@@ -416,9 +434,10 @@ mod tests {
         assert_eq!(texture.urls, ["bricks.png"]);
         assert_eq!(texture.candidates, ["bricks.png", "textures/bricks.png"]);
         assert_eq!((texture.red, texture.roughness), (0.5, 1.0));
-        // Without its image the wall is white, as before.
+        // Without its image the wall is white to the sensors, and a camera sees the
+        // appearance's own colour (the texture counted white).
         assert_eq!(w.obstacle_looks[0].reflectance, 1.0);
-        assert_eq!(w.obstacle_looks[0].colour, None);
+        assert_eq!(w.obstacle_looks[0].colour, Some([0.5, 1.0, 1.0]));
         let other = [("elsewhere.png".to_string(), [0.0; 3])]
             .into_iter()
             .collect();
@@ -540,11 +559,17 @@ mod tests {
     }
 
     #[test]
-    fn no_appearance_a_texture_or_an_unknown_proto_give_no_colour() {
+    fn no_appearance_or_an_unknown_proto_give_no_colour_a_texture_its_appearance_s() {
         assert_eq!(solid_with(""), None);
         assert_eq!(
             solid_with(
                 "appearance PBRAppearance { baseColor 1 0 0 baseColorMap ImageTexture { url [ \"a.png\" ] } }"
+            ),
+            Some([1.0, 0.0, 0.0])
+        );
+        assert_eq!(
+            solid_with(
+                "appearance Appearance { material Material { diffuseColor 0 1 0 } texture ImageTexture { url [ \"a.png\" ] } }"
             ),
             None
         );
@@ -553,6 +578,27 @@ mod tests {
             solid_with("appearance Roughcast { colorOverride 0 0 1 }"),
             Some([0.0, 0.0, 1.0])
         );
+    }
+
+    #[test]
+    fn a_textured_solid_box_or_wall_is_listed_with_its_texture_and_seen_in_its_colour() {
+        // A textured appearance in a PROTO's field lost its colour and its texture: the box was
+        // grey to a camera and its image never read.
+        let mut w = import(
+            "#VRML_SIM R2023b utf8\nSolidBox { translation 0.3 0 0.05 size 0.1 0.1 0.1 \
+             appearance PBRAppearance { baseColor 1 0 0 baseColorMap ImageTexture { \
+             url [ \"tag.jpg\" ] } } }\nWall { translation -0.3 0 0 size 0.01 0.5 0.1 \
+             appearance PBRAppearance { baseColor 0 0 1 roughness 1 baseColorMap ImageTexture { \
+             url [ \"bricks.png\" ] } } }\n",
+        );
+        let urls: Vec<_> = w.wall_textures.iter().map(|t| t.urls.clone()).collect();
+        assert_eq!(urls, [["tag.jpg"], ["bricks.png"]]);
+        let colours: Vec<_> = w.obstacle_looks.iter().map(|l| l.colour).collect();
+        assert_eq!(colours, [Some([1.0, 0.0, 0.0]), Some([0.0, 0.0, 1.0])]);
+        let grey = [("tag.jpg".to_string(), [0.5; 3])].into_iter().collect();
+        w.shade_walls(&grey);
+        assert_eq!(w.obstacle_looks[0].colour, Some([0.5, 0.0, 0.0]));
+        assert_eq!(w.obstacle_looks[1].colour, Some([0.0, 0.0, 1.0]));
     }
 
     #[test]

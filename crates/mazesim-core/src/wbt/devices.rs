@@ -93,6 +93,9 @@ const BUILT_IN_NAMES: &[&str] = &[
     "receiver",
     "speaker",
 ];
+/// The LDS-01's field of view as Webots' RobotisLds01 PROTO writes it (not quite 2 pi).
+#[allow(clippy::approx_constant)]
+const LDS01_FIELD_OF_VIEW: f64 = 6.28318;
 /// A device PROTO of Webots' own that holds one device node with fields of its own setting: a
 /// world may mount it in a slot, or among a robot's children, as the device it holds.
 struct DeviceProto {
@@ -179,7 +182,10 @@ const EPUCK_DISTANCE_SENSOR_MODEL: &str = "e-puck distance sensor";
 ///   `model` [`EPUCK_DISTANCE_SENSOR_MODEL`];
 /// - Sharp's infra-red rangers of `projects/devices/sharp` (`SharpGP2D120`, `SharpGP2Y0A41SK0F`,
 ///   `SharpGP2Y0A02YK0F`): a generic `DistanceSensor` of the datasheet's table, reading volts,
-///   named after the sensor (`Sharp's IR sensor GP2D120`).
+///   named after the sensor (`Sharp's IR sensor GP2D120`);
+/// - Robotis' `RobotisLds01` laser distance sensor: a `Lidar` named `LDS-01` of one layer of
+///   360 ranges all round, 0.12 to 3.5 m (the Coursera and CU Boulder course worlds mount it
+///   among an e-puck's children).
 const DEVICE_PROTOS: &[DeviceProto] = &[
     DeviceProto {
         proto: "E-puckDistanceSensor",
@@ -228,6 +234,26 @@ const DEVICE_PROTOS: &[DeviceProto] = &[
         fixed: &[
             ("model", ProtoValue::Text("GP2Y0A02YK0F")),
             ("lookupTable", ProtoValue::Table(SHARP_20_150_CM)),
+        ],
+    },
+    // Robotis' LDS-01 laser distance sensor, as Webots' RobotisLds01 PROTO sets its Lidar
+    // (projects/devices/robotis/protos/RobotisLds01.proto; Webots' guide, Lidar sensors): one
+    // layer of 360 ranges all round, 0.12 to 3.5 m. Its turret's two motors are not simulated.
+    DeviceProto {
+        proto: "RobotisLds01",
+        kind: "Lidar",
+        default_name: "LDS-01",
+        translation: [0.0, 0.0, 0.02],
+        turn: 0.0,
+        kept: &["noise"],
+        fixed: &[
+            ("horizontalResolution", ProtoValue::Number(360.0)),
+            ("fieldOfView", ProtoValue::Number(LDS01_FIELD_OF_VIEW)),
+            ("numberOfLayers", ProtoValue::Number(1.0)),
+            ("near", ProtoValue::Number(0.07)),
+            ("minRange", ProtoValue::Number(0.12)),
+            ("maxRange", ProtoValue::Number(3.5)),
+            ("noise", ProtoValue::Number(0.0043)),
         ],
     },
 ];
@@ -415,8 +441,17 @@ impl<'d> Importer<'d> {
                 // any device, which makes the robot's devices unknown.
                 let named = self.strings(node, "name").first().cloned();
                 let e_puck_named = named.filter(|n| BUILT_IN_NAMES.contains(&n.as_str()));
-                self.unseen_devices |= e_puck_named.is_none() && !SEEN_THROUGH.contains(&kind);
+                let unseen = e_puck_named.is_none() && !SEEN_THROUGH.contains(&kind);
+                self.unseen_devices |= unseen;
                 self.held_devices.extend(e_puck_named);
+                if unseen {
+                    // Said as a slot's unknown node is: a controller's getDevice of what it
+                    // holds finds nothing, and the run should say why.
+                    let label = self.label(node);
+                    self.warn(format!(
+                        "{label}: in the robot's children: not a device mazesim lists; not imported"
+                    ));
+                }
             }
             if let Some(&(_, default_name)) = device {
                 let name = self.strings(node, "name").first().cloned();
