@@ -261,6 +261,10 @@ def test_seeds_up_to_two_to_the_64_beside_small_ones_are_taken_exactly() -> None
     batch = RobotBatch([WORLD], [0, 0])
     batch.reset(seeds=[2**64 - 1, 0])
     assert mazesim._sizes.seed_array([2**64 - 1, 0], "seeds", 2).tolist() == [2**64 - 1, 0]
+    # Too many seeds are refused by the bound's own words, once (not wrapped in the seed check's).
+    with pytest.raises(mazesim.InvalidArgumentError) as raised:
+        mazesim._sizes.seed_array(range(10), "seeds", 3)
+    assert str(raised.value) == "expected seeds to hold at most 3 values, found 10 (a range)"
 
 
 @pytest.mark.parametrize("case", sorted(REFUSED))

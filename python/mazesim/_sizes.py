@@ -122,6 +122,8 @@ def _whole_numbers(
     """``value`` as an array of ``dtype``, each a whole number from 0 to ``below - 1``."""
     try:
         array = np.asarray(value) if most is None else bounded_array(value, name, None, most)
+    except InvalidArgumentError:
+        raise  # too many values, said so by the bound
     except (TypeError, ValueError) as error:  # ragged nesting, unconvertible objects
         raise InvalidArgumentError(
             f"expected {name} as whole numbers from 0 to {below - 1}, found {_a_type(value)}: "

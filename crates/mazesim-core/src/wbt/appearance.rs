@@ -360,8 +360,8 @@ impl WbtImport {
     /// colour (red, green, blue in [0, 1]) keyed by the candidate file it was read from (the
     /// first candidate found counts): the reflection factor `f = 0.2 + 0.8 (mean red x the
     /// appearance's red) (1 - 0.5 roughness)` and the colour a camera sees, the mean colour
-    /// times the appearance's. A wall whose texture has no image stays white (and white to a
-    /// camera, unless its appearance has a colour of its own). Call it once, after the import.
+    /// times the appearance's. A wall whose texture has no image stays white (drawn by a camera as
+    /// a white wall is, unless its appearance has a colour of its own). Call it once, after the import.
     pub fn shade_walls(&mut self, mean_colours: &BTreeMap<String, [f64; 3]>) {
         let shades: Vec<Option<Look>> = self
             .wall_textures
