@@ -114,6 +114,27 @@ def supervisor_in(tmp_path: Path, text: str = WORLD, noise: bool = False) -> con
     return controller.Supervisor()
 
 
+def slot_readings(
+    tmp_path: Path, sensors: str, names: list[str], floor: str = "1 1 1", scenery: str = ""
+) -> list[float]:
+    """What the DistanceSensors ``sensors`` of an R2025a supervisor E-puck's
+    ``groundSensorsSlot`` (3 cm ahead of its centre, 0.3 mm up; named ``names``) read after one
+    step, on a floor of colour ``floor`` and roughness 0, beside ``scenery``, noise-free."""
+    text = (
+        "#VRML_SIM R2025a utf8\nWorldInfo { basicTimeStep 16 }\n"
+        "RectangleArena { floorSize 2 2\n"
+        f"  floorAppearance PBRAppearance {{ baseColor {floor} roughness 0 metalness 0 }} }}\n"
+        f"{scenery}"
+        f'E-puck {{ supervisor TRUE controller "<extern>" groundSensorsSlot [ {sensors} ] }}\n'
+    )
+    robot = supervisor_in(tmp_path, text, noise=False)
+    devices = [robot.getDevice(name) for name in names]
+    for device in devices:
+        device.enable(16)
+    robot.step(16)
+    return [device.getValue() for device in devices]
+
+
 def drive(supervisor: controller.Supervisor, speed: float, steps: int) -> None:
     """Turns both wheels at ``speed`` rad/s for ``steps`` steps."""
     for name in ("left wheel motor", "right wheel motor"):

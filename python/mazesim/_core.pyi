@@ -215,6 +215,13 @@ class World:
         """(N, 3) array: red, green, blue in [0, 1] of every wall box as a camera sees it, in
         the order of ``wall_boxes``; NaN for a wall that gives no colour (drawn in the grey of
         its reflectance)."""
+    def wall_tops(self) -> npt.NDArray[np.float64]:
+        """(N,) array: how high the top of every wall box stands above the floor (m), in the
+        order of ``wall_boxes``; inf for a wall that gives no height (higher than any sensor's
+        ray)."""
+    def sensed_wall_tops(self) -> npt.NDArray[np.float64]:
+        """(N,) array as ``wall_tops`` of the sensed-only walls, in the order of
+        ``sensed_wall_boxes``."""
     def sensed_wall_boxes(self) -> npt.NDArray[np.float64]:
         """(N, 6) array as ``wall_boxes`` of the sensed-only walls (``sensed_only = true``: seen
         by infra-red rays and cameras, met by nothing else), in ``[[walls]]`` order; (0, 6) when

@@ -19,7 +19,7 @@ from pathlib import Path
 
 import pytest
 
-from supervised_world import supervisor_in
+from supervised_world import slot_readings, supervisor_in
 
 pytestmark = pytest.mark.usefixtures("fresh_robot")
 
@@ -58,26 +58,6 @@ def test_a_strip_under_the_front_left_darkens_gs0_alone(tmp_path: Path, version:
     assert right == pytest.approx(middle, rel=0.1), (left, middle, right)
 
 
-def slot_readings(
-    tmp_path: Path, sensors: str, names: tuple[str, ...], floor: str = "1 1 1", scenery: str = ""
-) -> list[float]:
-    """What the DistanceSensors ``sensors`` of an R2025a E-puck's ``groundSensorsSlot`` (named
-    ``names``) read after one step, on a floor of colour ``floor`` and roughness 0, noise-free."""
-    text = (
-        "#VRML_SIM R2025a utf8\nWorldInfo { basicTimeStep 16 }\n"
-        "RectangleArena { floorSize 2 2\n"
-        f"  floorAppearance PBRAppearance {{ baseColor {floor} roughness 0 metalness 0 }} }}\n"
-        f"{scenery}"
-        f'E-puck {{ supervisor TRUE controller "<extern>" groundSensorsSlot [ {sensors} ] }}\n'
-    )
-    robot = supervisor_in(tmp_path, text, noise=False)
-    devices = [robot.getDevice(name) for name in names]
-    for device in devices:
-        device.enable(16)
-    robot.step(16)
-    return [device.getValue() for device in devices]
-
-
 def test_an_infra_red_sensor_in_the_slot_reads_the_floor_from_its_0_3_mm(tmp_path: Path) -> None:
     # Since R2022a the slot holds its nodes 0.3 mm above the floor: an infra-red sensor turned
     # to look straight down on white paint (reflection factor 1) reads 0.0003 m through the
@@ -87,7 +67,7 @@ def test_an_infra_red_sensor_in_the_slot_reads_the_floor_from_its_0_3_mm(tmp_pat
         'DistanceSensor { rotation 0 1 0 1.5708 name "down" type "infra-red" }\n'
         'DistanceSensor { rotation 0 1 0 1.7017 name "tilted" type "infra-red" }'
     )
-    down, tilted = slot_readings(tmp_path, sensors, ("down", "tilted"))
+    down, tilted = slot_readings(tmp_path, sensors, ["down", "tilted"])
     assert down == pytest.approx(3.0, abs=0.01)
     assert tilted == pytest.approx(3.0 / math.sin(1.7017), abs=0.01)
 
@@ -125,7 +105,7 @@ def test_a_sensor_tilted_a_little_down_reads_the_floor_ahead_or_a_nearer_wall(
     sensor = (
         'DistanceSensor { translation 0 0 0.0097 rotation 0 1 0 0.2618 name "ir" type "infra-red" }'
     )
-    (read,) = slot_readings(tmp_path, sensor, ("ir",), scenery=scenery)
+    (read,) = slot_readings(tmp_path, sensor, ["ir"], scenery=scenery)
     assert read == pytest.approx(expected, abs=0.5)
 
 
@@ -138,5 +118,5 @@ def test_red_colour_sensitivity_sets_how_much_the_floor_s_colour_counts(
     sensor = (
         f'DistanceSensor {{ rotation 0 1 0 1.5708 name "down" type "infra-red" {sensitivity} }}'
     )
-    (read,) = slot_readings(tmp_path, sensor, ("down",), floor="0 0 0")
+    (read,) = slot_readings(tmp_path, sensor, ["down"], floor="0 0 0")
     assert read == pytest.approx(expected, abs=0.01)

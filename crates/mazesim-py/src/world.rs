@@ -5,7 +5,7 @@ use std::sync::Arc;
 use mazesim_core::tasks::{cell_targets, grid_of, largest_connected_cells, open_sides};
 use mazesim_core::world::{BodyShape, PaintShape, PlacedMaze, WallBox};
 use mazesim_core::World;
-use numpy::{PyArray2, PyArrayMethods};
+use numpy::{PyArray1, PyArray2, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -209,6 +209,18 @@ impl PyWorld {
                 .map(|c| c.unwrap_or([f64::NAN; 3]));
             rows_to_array(py, rows)
         })
+    }
+
+    /// (N,) array: how high the top of every wall box stands above the floor (m), in the order
+    /// of `wall_boxes`; inf for a wall that gives no height (higher than any sensor's ray).
+    fn wall_tops<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        enter(|| Ok(PyArray1::from_vec(py, self.inner.wall_tops())))
+    }
+
+    /// (N,) array as `wall_tops` of the sensed-only walls, in the order of
+    /// `sensed_wall_boxes`.
+    fn sensed_wall_tops<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        enter(|| Ok(PyArray1::from_vec(py, self.inner.sensed_wall_tops())))
     }
 
     /// (N, 6) array as `wall_boxes` of the sensed-only walls (`sensed_only = true`: seen by

@@ -21,6 +21,7 @@ import numpy as np
 
 from mazesim._toml import load_toml
 from mazesim.errors import MOST_MESSAGE, InvalidArgumentError, _a_type, _shortened
+from mazesim.webots.distance_rays import sensor_type
 from mazesim.webots.last_commands import PositionControl, WheelCommand, motor_speed
 from mazesim.webots.node_types import node_type
 from mazesim.webots.webots_api import NotSimulated, webots_property
@@ -514,10 +515,6 @@ class _VectorSensor(_Sensor):
     value = webots_property("getValues")
 
 
-#: Webots' DistanceSensor ``type`` field's values, as ``DistanceSensor.getType`` numbers them.
-DISTANCE_SENSOR_TYPES = {"generic": 0, "infra-red": 1, "sonar": 2, "laser": 3}
-
-
 class DistanceSensor(_Tabled, _ScalarSensor):
     """An infra-red sensor: a proximity sensor ``ps0``..``ps7`` or a ground sensor ``gs0``..``gs2``.
 
@@ -571,7 +568,7 @@ class DistanceSensor(_Tabled, _ScalarSensor):
         given = self._simulation.sensor_types.get(self._name)
         if given is None:
             return self.GENERIC if self._kind == "range" else self.INFRA_RED
-        return DISTANCE_SENSOR_TYPES.get(given, self.GENERIC)
+        return sensor_type(given)
 
     def getMaxRange(self) -> float:
         """The table's last distance (m)."""

@@ -32,6 +32,7 @@ from mazesim.webots.devices import (
     device_side,
 )
 from mazesim.webots.differential_drive import EPUCK_WHEELS, DifferentialDrive
+from mazesim.webots.distance_rays import MOST_RAYS
 from mazesim.webots.inert import Display, Pen, Speaker
 from mazesim.webots.joints import JointMotor, JointPositionSensor, LinearJointMotor, pair_joints
 from mazesim.webots.keyboard import Joystick, Keyboard, Mouse
@@ -121,7 +122,7 @@ _RESOLVED_KINDS = frozenset(
     }
 )
 #: The devices whose reading depends on their axes on the robot when a mount tilts them.
-_TILTED_KINDS = _DEVICE_FRAME_KINDS | {"InertialUnit"}
+_TILTED_KINDS = _DEVICE_FRAME_KINDS | {"InertialUnit", "DistanceSensor"}
 
 
 #: The E-puck PROTO's names of its wheels' motors and position sensors, left first.
@@ -195,6 +196,13 @@ def _number_field(fields: Mapping[str, Any], name: str, default: float) -> float
     return default
 
 
+def _ray_count(fields: Mapping[str, Any]) -> int:
+    """A DistanceSensor's ``numberOfRays`` (1 where it is left out or no number), at most
+    :data:`~mazesim.webots.distance_rays.MOST_RAYS`."""
+    count = _number_field(fields, "numberOfRays", 1.0)
+    return int(min(count, MOST_RAYS)) if math.isfinite(count) else 1
+
+
 def _names_a_side(name: str) -> bool:
     """Whether a device's name says which wheel it is (``left_motor``, ``encoder R``...)."""
     lower = name.lower()
@@ -241,6 +249,8 @@ def extension_device(simulation: RobotSimulation, entry: Mapping[str, Any]) -> D
             str(fields.get("type", "generic")),
             aperture,
             _number_field(fields, "redColorSensitivity", 1.0),
+            _ray_count(fields),
+            _number_field(fields, "gaussianWidth", 1.0),
         ),
         "LightSensor": lambda: (
             LightSensor(name, simulation, table, mount)

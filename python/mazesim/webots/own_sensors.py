@@ -107,6 +107,7 @@ def own_sensors(name: str, scene: Scene | None) -> OwnSensors:
         or scene.infrared_elevation
         or scene.drive
         or scene.drive_refused
+        or scene.sensor_ray_counts
     ):
         return OwnSensors()
     layout = _profile_layout(name)
@@ -137,7 +138,7 @@ def own_sensors(name: str, scene: Scene | None) -> OwnSensors:
     poses = _moved_sensors(layout, scene)
     elevations, floor_warnings = _tilted_rays(layout, scene)
     types, type_warnings = _ray_types(layout, scene)
-    warnings += floor_warnings + type_warnings
+    warnings += floor_warnings + type_warnings + _one_ray(layout, scene)
     if scene.drive is not None:
         warnings += scene.drive.warnings
         layout = copy.deepcopy(layout)
@@ -206,7 +207,7 @@ def _ray_types(layout: Mapping[str, Any], scene: Scene) -> tuple[dict[str, str],
         if limit is None:
             limit = (
                 f"expected one of {', '.join(map(repr, [*TYPE_LIMITS, INFRA_RED]))}, found "
-                f"{_shown(found)}: read as generic"
+                f"{_shown(found)}, which Webots reads as a sonar: {TYPE_LIMITS['sonar']}"
             )
         if limit:
             warnings.append(
@@ -214,6 +215,21 @@ def _ray_types(layout: Mapping[str, Any], scene: Scene) -> tuple[dict[str, str],
                 f"alone, whatever colour its ray meets; {limit}"
             )
     return types, warnings
+
+
+def _one_ray(layout: Mapping[str, Any], scene: Scene) -> list[str]:
+    """A warning naming the distance sensors of a parsed profile file whose node casts several
+    rays (``Scene.sensor_ray_counts``), which the profile's sensors cast one of, one line per
+    count."""
+    by_count: dict[int, list[str]] = {}
+    for sensor in layout.get("distance_sensors", []):
+        if (count := scene.sensor_ray_counts.get(sensor["name"])) is not None:
+            by_count.setdefault(count, []).append(repr(sensor["name"]))
+    return [
+        f"DistanceSensor {', '.join(names)} casts {count} rays in Webots (numberOfRays "
+        f"{count}, spread over its aperture and averaged); mazesim casts one, along its axis"
+        for count, names in by_count.items()
+    ]
 
 
 def _moved_sensors(layout: Mapping[str, Any], scene: Scene) -> dict[str, tuple[float, ...]]:

@@ -24,16 +24,19 @@ Floats = npt.NDArray[np.float64]
 
 class WallBoxes:
     """The walls of a world as oriented boxes, ready for many rays at once; with ``sensed``, its
-    sensed-only walls too (after the others), as infra-red rays and cameras see them."""
+    sensed-only walls too (after the others), as infra-red rays and cameras see them. Seen from
+    above, each stands from the floor to its top (:meth:`cast_sloped`)."""
 
     def __init__(self, world: World, sensed: bool = False) -> None:
         boxes = np.asarray(world.wall_boxes(), dtype=np.float64).reshape(-1, 6)
         colours = np.asarray(world.wall_colours(), dtype=np.float64).reshape(-1, 3)
+        tops = np.asarray(world.wall_tops(), dtype=np.float64).reshape(-1)
         if sensed:
             boxes = np.concatenate([boxes, np.asarray(world.sensed_wall_boxes()).reshape(-1, 6)])
             more = np.asarray(world.sensed_wall_colours(), dtype=np.float64).reshape(-1, 3)
             colours = np.concatenate([colours, more])
-        self._take(boxes, colours)
+            tops = np.concatenate([tops, np.asarray(world.sensed_wall_tops()).reshape(-1)])
+        self._take(boxes, colours, tops)
 
     @classmethod
     def of_boxes(cls, boxes: list[tuple[float, float, float, float, float, float]]) -> WallBoxes:
@@ -43,8 +46,9 @@ class WallBoxes:
         made._take(array, np.full((array.shape[0], 3), np.nan))
         return made
 
-    def _take(self, boxes: Floats, colours: Floats) -> None:
-        """Holds ``boxes`` (N, 6) and their ``colours`` (N, 3)."""
+    def _take(self, boxes: Floats, colours: Floats, tops: Floats | None = None) -> None:
+        """Holds ``boxes`` (N, 6), their ``colours`` (N, 3) and ``tops`` (N,; inf: higher than
+        any ray goes, the default)."""
         self.center = boxes[:, 0:2]
         self.half = boxes[:, 2:4] / 2.0
         self.cos = np.cos(boxes[:, 4])
@@ -52,6 +56,8 @@ class WallBoxes:
         self.reflectance = boxes[:, 5]
         #: Red, green, blue in [0, 1] of each wall as a camera sees it; NaN where none is given.
         self.colour = colours
+        #: How high each wall's top stands above the floor (m); inf where the world gives none.
+        self.top = np.full(boxes.shape[0], np.inf) if tops is None else tops
 
     def moved(
         self,
@@ -90,10 +96,41 @@ class WallBoxes:
             none).
         """
         distance, wall = self.cast_walls(origin, directions)
+        return distance, self.reflectances(wall)
+
+    def reflectances(self, wall: npt.NDArray[np.intp]) -> Floats:
+        """The reflectance of each wall of indices ``wall`` (NaN for -1: none)."""
         if self.reflectance.shape[0] == 0:  # no wall: every ray meets none
-            return distance, np.full(distance.shape, np.nan)
-        reflectance = np.where(wall >= 0, self.reflectance[np.maximum(wall, 0)], np.nan)
-        return distance, reflectance
+            return np.full(wall.shape, np.nan)
+        return np.where(wall >= 0, self.reflectance[np.maximum(wall, 0)], np.nan)
+
+    def side_normals(
+        self,
+        origin: tuple[float, float],
+        directions: Floats,
+        distance: Floats,
+        wall: npt.NDArray[np.intp],
+    ) -> Floats:
+        """The unit normal, seen from above, of the side of wall ``wall`` (indices; -1: none)
+        that each ray from ``origin`` along ``directions`` meets ``distance`` along it ((N,
+        2); NaN where a ray meets none): the side of the wall's box on which the hit lies."""
+        normals = np.full(directions.shape, np.nan)
+        hit = wall >= 0
+        if not hit.any():
+            return normals
+        index = wall[hit]
+        x = origin[0] + distance[hit] * directions[hit, 0] - self.center[index, 0]
+        y = origin[1] + distance[hit] * directions[hit, 1] - self.center[index, 1]
+        c, s = self.cos[index], self.sin[index]
+        local_x, local_y = c * x + s * y, -s * x + c * y
+        half = np.maximum(self.half[index], 1e-12)
+        # The hit lies on the face whose side of the box it is furthest out to.
+        on_x = np.abs(local_x) / half[:, 0] >= np.abs(local_y) / half[:, 1]
+        nx = np.where(on_x, np.sign(local_x), 0.0)
+        ny = np.where(on_x, 0.0, np.sign(local_y))
+        normals[hit, 0] = c * nx - s * ny
+        normals[hit, 1] = s * nx + c * ny
+        return normals
 
     def nearest_distance(self, point: tuple[float, float]) -> float:
         """The distance from ``point``, seen from above, to the nearest wall (0 inside one;
@@ -114,6 +151,41 @@ class WallBoxes:
         count = directions.shape[0]
         if self.center.shape[0] == 0:
             return np.full(count, np.inf), np.full(count, -1, dtype=np.intp)
+        near, far = self._entries(origin, directions)
+        t = np.where(near <= far, near, np.inf)
+        nearest = np.argmin(t, axis=1)
+        distance = t[np.arange(count), nearest]
+        return distance, np.where(np.isfinite(distance), nearest, -1)
+
+    def cast_sloped(
+        self, origin: tuple[float, float], directions: Floats, height: float, slopes: Floats
+    ) -> tuple[Floats, npt.NDArray[np.intp], npt.NDArray[np.bool_]]:
+        """As :meth:`cast_walls`, for rays that leave ``origin`` ``height`` above the floor and
+        rise by ``slopes`` (one per ray; negative: falling) for each metre they run across it:
+        a ray meets a wall's side where it is no higher than the wall's top there, falls onto
+        its top, or passes over it. Returns each ray's parameter at the first wall met (across
+        the floor; ``inf``: none), that wall's index (-1) and whether it met the wall's top."""
+        count = directions.shape[0]
+        if self.center.shape[0] == 0:
+            return np.full(count, np.inf), np.full(count, -1, dtype=np.intp), np.zeros(count, bool)
+        near, far = self._entries(origin, directions)
+        slope = slopes[:, None]
+        crossed = near <= far
+        # A box a ray misses has no entry (inf times a level ray's 0 slope is NaN: no side).
+        with np.errstate(divide="ignore", invalid="ignore"):
+            side = crossed & (height + slope * near <= self.top)
+            onto = (self.top - height) / slope
+        on_top = crossed & ~side & (slope < 0.0) & (onto >= near) & (onto <= far)
+        t = np.where(side, near, np.where(on_top, onto, np.inf))
+        nearest = np.argmin(t, axis=1)
+        rows = np.arange(count)
+        distance = t[rows, nearest]
+        met = np.isfinite(distance)
+        return distance, np.where(met, nearest, -1), met & on_top[rows, nearest]
+
+    def _entries(self, origin: tuple[float, float], directions: Floats) -> tuple[Floats, Floats]:
+        """Where each ray (rows) enters and leaves each box (columns), as ray parameters (the
+        entry no earlier than the origin); entry above exit where it misses the box."""
         # Origin and directions in each box's frame: (boxes,) and (rays, boxes).
         ox = origin[0] - self.center[:, 0]
         oy = origin[1] - self.center[:, 1]
@@ -126,13 +198,7 @@ class WallBoxes:
         with np.errstate(divide="ignore", invalid="ignore"):
             near_x, far_x = _slab(local_ox, local_dx, self.half[:, 0])
             near_y, far_y = _slab(local_oy, local_dy, self.half[:, 1])
-        near = np.maximum(np.maximum(near_x, near_y), 0.0)
-        far = np.minimum(far_x, far_y)
-        hit = near <= far
-        t = np.where(hit, near, np.inf)
-        nearest = np.argmin(t, axis=1)
-        distance = t[np.arange(count), nearest]
-        return distance, np.where(np.isfinite(distance), nearest, -1)
+        return np.maximum(np.maximum(near_x, near_y), 0.0), np.minimum(far_x, far_y)
 
 
 def _slab(origin: Floats, direction: Floats, half: Floats) -> tuple[Floats, Floats]:

@@ -235,6 +235,9 @@ class Scene:
             (those of ``sensor_tables``), by its ``name``: ``"generic"`` (Webots' default where
             the node has no such field), ``"infra-red"``, ``"sonar"`` or ``"laser"``, as
             written.
+        sensor_ray_counts: The ``numberOfRays`` of each ``DistanceSensor`` node the robot's node
+            lists itself, by its ``name``, where it is above 1; of an E-puck PROTO whose
+            ``distance_sensor_numberOfRays`` is above 1, that count for each of ps0..ps7.
         drive: The wheels, axle and body of a plain ``Robot`` node that is a two-wheeled robot
             of its own build, its wheels not the E-puck's
             (:func:`~mazesim.webots.own_drive.own_drive`); None for another robot.
@@ -279,6 +282,7 @@ class Scene:
     sensor_poses: dict[str, tuple[float, float, float, float]] = field(default_factory=dict)
     sensor_heights: dict[str, float] = field(default_factory=dict)
     sensor_types: dict[str, str] = field(default_factory=dict)
+    sensor_ray_counts: dict[str, int] = field(default_factory=dict)
     drive: OwnDrive | None = None
     drive_refused: str | None = None
     origin_height: float = 0.0
@@ -435,12 +439,16 @@ def _scene(
         if robot.type_name in EPUCK_TYPES:
             # The E-puck PROTO's first HingeJoint is its left wheel's, the second its right's.
             scene.wheel_positions = (_saved_wheel(robot, 0), _saved_wheel(robot, 1))
+            rays = first_value(own, "distance_sensor_numberOfRays", _leading(1))
+            if rays is not None and rays[0] > 1:
+                scene.sensor_ray_counts = {f"ps{i}": _ray_count(rays[0]) for i in range(8)}
         else:
             scene.sensor_tables, scene.malformed_tables = _sensor_tables(text, inside)
             placed = _sensor_poses(robot, scene.body_y_up)
             scene.sensor_poses = {name: pose[:4] for name, pose in placed.items()}
             scene.sensor_heights = {name: pose[4] for name, pose in placed.items()}
             scene.sensor_types = _sensor_types(inside)
+            scene.sensor_ray_counts = _sensor_ray_counts(inside)
             if robot.type_name == "Robot" and robot_model is not None:
                 # A plain Robot the import simulates: its own two wheels, where they are not
                 # the E-puck's (an e-puck saved expanded keeps the profile's numbers).
@@ -591,6 +599,23 @@ def _sensor_types(inside: list[Node]) -> dict[str, str]:
             given = first_value([node], "type", Field.string)
             types[name] = given if given is not None else DEFAULT_SENSOR_TYPE
     return types
+
+
+def _sensor_ray_counts(inside: list[Node]) -> dict[str, int]:
+    """The ``numberOfRays`` of each named ``DistanceSensor`` node among a robot's nodes
+    ``inside`` whose count is above 1."""
+    rays: dict[str, int] = {}
+    for node in inside:
+        name = _sensor_name(node)
+        count = first_value([node], "numberOfRays", _leading(1))
+        if name is not None and name not in rays and count is not None and count[0] > 1:
+            rays[name] = _ray_count(count[0])
+    return rays
+
+
+def _ray_count(value: float) -> int:
+    """A ``numberOfRays`` as a whole count (a huge one held at 2**31 - 1, an SFInt32's most)."""
+    return int(min(value, 2**31 - 1))
 
 
 def _rows_of_three(table: Field) -> list[Row] | None:

@@ -14,9 +14,9 @@ from collections.abc import Sequence
 from typing import TYPE_CHECKING, ClassVar
 
 import numpy as np
+import numpy.typing as npt
 
 from mazesim.webots.devices import (
-    DISTANCE_SENSOR_TYPES,
     DistanceSensor,
     LookupTable,
     Row,
@@ -26,6 +26,8 @@ from mazesim.webots.devices import (
     derived_reading,
     noise_stream,
 )
+from mazesim.webots.distance_rays import DistanceRays, RayHits, sensor_distance
+from mazesim.webots.distance_rays import sensor_type as read_sensor_type
 from mazesim.webots.frames import Axes, axes_or_none, enu_to_nue, nue_to_enu
 from mazesim.webots.lights import irradiance
 from mazesim.webots.node_types import node_type
@@ -34,6 +36,8 @@ from mazesim.webots.walls_now import WallsNow
 
 if TYPE_CHECKING:
     from mazesim.webots.simulation import RobotSimulation
+
+Floats = npt.NDArray[np.float64]
 
 __all__ = [
     "Accelerometer",
@@ -585,10 +589,12 @@ DISTANCE_SENSOR_APERTURE = 1.5708
 
 
 class RayDistanceSensor(DistanceSensor):
-    """A distance sensor the world adds: one ray from its mount against the walls (a
-    :class:`DistanceSensor`, with the world's table, type, aperture and, of an infra-red one,
-    ``redColorSensitivity``: how much of the reflection factor ``f`` it applies, the distance
-    ``d`` read as ``d + (d / f - d) * sensitivity``, Webots' DistanceSensor; 1 by default)."""
+    """A distance sensor the world adds: its rays from its mount against the walls and the
+    floor (a :class:`DistanceSensor`, with the world's table, type, aperture, number of rays,
+    ``gaussianWidth`` and, of an infra-red one, ``redColorSensitivity``: how much of the
+    reflection factor ``f`` it applies, the distance ``d`` read as ``d + (d / f - d) *
+    sensitivity``, Webots' DistanceSensor; 1 by default). How several rays are laid out and
+    make one reading, and how a sonar hears: :mod:`mazesim.webots.distance_rays`."""
 
     def __init__(
         self,
@@ -599,73 +605,76 @@ class RayDistanceSensor(DistanceSensor):
         sensor_type: str = "generic",
         aperture: float = DISTANCE_SENSOR_APERTURE,
         red_sensitivity: float = 1.0,
+        rays: int = 1,
+        gaussian_width: float = 1.0,
     ) -> None:
         _ScalarSensor.__init__(self, name, simulation)
         self._aperture = aperture
         self._red_sensitivity = red_sensitivity
         self._mount = mount
         self._table = LookupTable(DISTANCE_TABLE if not table else table)
-        self._type = DISTANCE_SENSOR_TYPES.get(sensor_type, self.GENERIC)
+        self._type = read_sensor_type(sensor_type)
+        self._rays = DistanceRays.of(rays, aperture, gaussian_width, self._type)
+        # Each ray's heading from the mount's and its pitch down, in the robot's frame.
+        self._headings, self._pitches = _ray_bearings(mount, self._rays)
         self._walls = WallsNow(simulation, sensed=self._type == self.INFRA_RED)
         self._rng = noise_stream(simulation, name)
 
     def _read(self) -> float:
-        """One ray from the mount. A ray pointing down (``pitch`` above 0) slopes to the floor:
-        it goes ``distance / cos(pitch)`` to a wall ``distance`` ahead and meets the floor
-        ``z / sin(pitch)`` away, and the nearer of the two is what the sensor reads (Webots
-        casts the ray in 3D: a sensor tilted 15 degrees down from 1 cm up reads the floor 3.9
-        cm away). Beyond :data:`DOWNWARD_PITCH` the floor is all it reads."""
-        pitch = self._mount.pitch
-        if pitch > DOWNWARD_PITCH:
-            return self._read_floor()
-        x, y, heading = self._mount.world_pose(self._simulation.simulator.pose)
-        direction = np.array([[math.cos(heading), math.sin(heading)]])
-        distance, reflectance = self._walls.walls().cast((x, y), direction)
+        """Each ray from the mount (:meth:`_hits`), made one distance as the sensor's type makes
+        it (:func:`~mazesim.webots.distance_rays.sensor_distance`), through the table."""
         reach = self.getMaxRange()
-        d = float(distance[0]) / max(math.cos(pitch), 1e-9)
-        factor = float(reflectance[0])
-        height = self._height()
-        if pitch > 0.0 and height > 0.0 and height / math.sin(pitch) < min(d, reach):
-            d, factor = self._floor_hit()
-        if math.isfinite(d):
-            d = self._reflected(d, factor)
+        d = sensor_distance(self._type, self._rays, self._hits(), reach, self._red_sensitivity)
         return self._table(min(d, reach), self._rng)
 
-    def _reflected(self, d: float, factor: float) -> float:
-        """The distance an infra-red sensor reads for a surface ``d`` away of reflection factor
-        ``factor`` (a sensor of another type reads ``d``)."""
-        if self._type != self.INFRA_RED:
-            return d
-        reflected = d / max(factor, 1e-6)
-        if self._red_sensitivity == 1.0:
-            return reflected
-        return d + (reflected - d) * self._red_sensitivity
+    def _hits(self) -> RayHits:
+        """What each ray meets. A ray pointing down (``pitch`` above 0) slopes to the floor: it
+        goes ``distance / cos(pitch)`` to a wall ``distance`` ahead and meets the floor ``z /
+        sin(pitch)`` away, and the nearer of the two is what it meets (Webots casts the ray in
+        3D: a sensor tilted 15 degrees down from 1 cm up reads the floor 3.9 cm away). Beyond
+        :data:`DOWNWARD_PITCH` the floor is all it meets. A wall stands from the floor to its
+        top (the world's, else higher than any ray): a ray passes over a wall lower than it
+        where it crosses it, or falls onto its top."""
+        x, y, heading = self._mount.world_pose(self._simulation.simulator.pose)
+        turned = heading + self._headings
+        flat = np.stack([np.cos(turned), np.sin(turned)], axis=1)
+        walls = self._walls.walls()
+        height = self._height()
+        rise = -np.tan(self._pitches)
+        distance, wall, on_top = walls.cast_sloped((x, y), flat, height, rise)
+        slant = np.maximum(np.cos(self._pitches), 1e-9)
+        distances, factors = distance / slant, walls.reflectances(wall)
+        # The cosine of the angle between a ray and the surface it meets, at its normal.
+        incidence = np.where(on_top, np.sin(self._pitches), 1.0)
+        if self._type == self.SONAR:
+            normals = walls.side_normals((x, y), flat, distance, wall)
+            sides = slant * np.abs(np.sum(normals * flat, axis=1))
+            incidence = np.where(on_top, incidence, sides)
+        for ray, pitch in enumerate(self._pitches):
+            steep = pitch > DOWNWARD_PITCH
+            floor = height / math.sin(pitch) if pitch > 0.0 and height > 0.0 else math.inf
+            if steep or floor < min(distances[ray], self.getMaxRange()):
+                distances[ray], factors[ray] = self._floor_hit(heading + self._headings[ray], pitch)
+                incidence[ray] = math.sin(pitch)
+        return RayHits(distances, factors, incidence)
 
     def _height(self) -> float:
         """The mount's height above the floor: its own above the robot's origin, plus how high
         the origin rests (a plain Robot's on its wheels; an E-puck's is on the floor)."""
         return self._mount.z + self._simulation.scene.origin_height
 
-    def _floor_hit(self) -> tuple[float, float]:
-        """How far the ray goes to the floor and the floor's reflection factor where it meets
-        it: ``z / sin(pitch)`` away, ahead of the mount by ``z / tan(pitch)``. The height is
-        the mount's as Webots has it (the R2022a E-puck's slot holds a sensor 0.3 mm up), above
-        the robot's resting origin (:meth:`_height`); one on or below the floor's plane meets it
-        a micrometre away."""
-        mount = self._mount
+    def _floor_hit(self, heading: float, pitch: float) -> tuple[float, float]:
+        """How far a ray of ``heading`` (in the world) and ``pitch`` goes to the floor and the
+        floor's reflection factor where it meets it: ``z / sin(pitch)`` away, ahead of the mount
+        by ``z / tan(pitch)``. The height is the mount's as Webots has it (the R2022a E-puck's
+        slot holds a sensor 0.3 mm up), above the robot's resting origin (:meth:`_height`); one
+        on or below the floor's plane meets it a micrometre away."""
         height = max(self._height(), 1e-6)
-        sine = math.sin(mount.pitch)
-        ahead = height * math.cos(mount.pitch) / sine
-        x, y, heading = mount.world_pose(self._simulation.simulator.pose)
+        sine = math.sin(pitch)
+        ahead = height * math.cos(pitch) / sine
+        x, y, _ = self._mount.world_pose(self._simulation.simulator.pose)
         x, y = x + ahead * math.cos(heading), y + ahead * math.sin(heading)
         return height / sine, float(self._simulation.world.floor_reflectance(x, y))
-
-    def _read_floor(self) -> float:
-        """A sensor pointed at the floor (a ground sensor of the ``groundSensorsSlot``): an
-        infra-red sensor's distance to it (:meth:`_floor_hit`) is divided by the floor's
-        reflectance there, as for walls."""
-        d, factor = self._floor_hit()
-        return self._table(min(self._reflected(d, factor), self.getMaxRange()), self._rng)
 
     def getType(self) -> int:
         """The sensor type from the world (``GENERIC`` by default)."""
@@ -673,8 +682,26 @@ class RayDistanceSensor(DistanceSensor):
 
     def getAperture(self) -> float:
         """The node's ``aperture`` (rad): the world's, an ``E-puckDistanceSensor``'s 0.1, else
-        Webots' default, 1.5708 (mazesim casts one ray whatever it is)."""
+        Webots' default, 1.5708 (it spreads the rays of a sensor of several)."""
         return self._aperture
+
+
+def _ray_bearings(mount: DeviceMount, rays: DistanceRays) -> tuple[Floats, Floats]:
+    """Each ray's heading from the mount's (rad, counter-clockwise) and pitch below the
+    horizontal, in the robot's frame: one ray along the mount's own heading and pitch; several
+    turned by the device's axes (the import's, else those of its heading and pitch unrolled)."""
+    if len(rays) == 1:
+        return np.zeros(1), np.array([mount.pitch])
+    axes = mount.axes
+    if axes is None:
+        c, s = math.cos(mount.pitch), math.sin(mount.pitch)
+        ahead = (c * math.cos(mount.yaw), c * math.sin(mount.yaw), -s)
+        left = (-math.sin(mount.yaw), math.cos(mount.yaw), 0.0)
+        axes = (ahead, left, tuple(np.cross(ahead, left)))
+    along = rays.directions @ np.asarray(axes, dtype=np.float64)
+    headings = np.arctan2(along[:, 1], along[:, 0]) - mount.yaw
+    pitches = np.arctan2(-along[:, 2], np.hypot(along[:, 0], along[:, 1]))
+    return headings, pitches
 
 
 def _product(first: Sequence[float], second: Sequence[float]) -> list[float]:

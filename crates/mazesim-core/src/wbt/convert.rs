@@ -4,6 +4,7 @@
 
 use std::f64::consts::PI;
 
+use super::shapes::snap;
 use super::{Look, Obstacle, WbtImport};
 use crate::error::{Error, Location, Result};
 use crate::world::spec::{FloorSpec, StartSpec, WallSpec, WorldSpec};
@@ -39,6 +40,7 @@ fn wall(center: [f64; 2], size: [f64; 2], yaw: f64, look: Look) -> WallSpec {
         yaw: Finite(yaw),
         reflectance: Reflectance(look.reflectance),
         colour: look.colour.map(values::colour),
+        height: None,
         sensed_only: false,
     }
 }
@@ -102,13 +104,14 @@ impl WbtImport {
     /// The mazesim world description of this import.
     pub fn to_spec(&self, name: &str) -> WorldSpec {
         // The solid obstacles first (`obstacle_walls` counts them), then the sensed-only ones.
-        let solid =
-            (self.obstacles.iter().enumerate()).map(|(i, o)| (o, &self.obstacle_looks, i, false));
+        let solid = (self.obstacles.iter().enumerate())
+            .map(|(i, o)| (o, &self.obstacle_looks, &self.obstacle_tops, i, false));
         let sensed = (self.sensed_obstacles.iter().enumerate())
-            .map(|(i, o)| (o, &self.sensed_looks, i, true));
+            .map(|(i, o)| (o, &self.sensed_looks, &self.sensed_tops, i, true));
         let mut walls = Vec::new();
-        for (obstacle, looks, i, sensed_only) in solid.chain(sensed) {
+        for (obstacle, looks, tops, i, sensed_only) in solid.chain(sensed) {
             let look = looks.get(i).copied().unwrap_or(Look::UNREAD);
+            let top = tops.get(i).copied().filter(|t| t.is_finite() && *t > 0.0);
             let first = walls.len();
             match *obstacle {
                 Obstacle::Box { center, size, yaw } => walls.push(wall(center, size, yaw, look)),
@@ -118,6 +121,7 @@ impl WbtImport {
             }
             for w in &mut walls[first..] {
                 w.sensed_only = sensed_only;
+                w.height = top.map(|t| Positive(snap(t)));
             }
         }
         WorldSpec {

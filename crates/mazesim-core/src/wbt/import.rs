@@ -145,12 +145,15 @@ pub struct Importer<'d> {
     pub obstacles: Vec<Obstacle>,
     /// How each of `obstacles` looks (see `appearance.rs`).
     pub obstacle_looks: Vec<Look>,
+    /// How high the top of each of `obstacles` stands above the floor (m; see `WbtImport`).
+    pub obstacle_tops: Vec<f64>,
     /// How the Solid whose collision shapes are being read looks.
     pub look: Look,
     /// Obstacles only infra-red rays and cameras meet (visual-only shapes in the proximity
     /// rays' way, see `sensed.rs`), and how they look.
     pub sensed_obstacles: Vec<Obstacle>,
     pub sensed_looks: Vec<Look>,
+    pub sensed_tops: Vec<f64>,
     /// Per sensed-only obstacle, the lines of the nodes that hold it.
     pub sensed_owners: Vec<Vec<usize>>,
     /// Set while reading a visual-only shape as a sensed-only obstacle.
@@ -219,6 +222,9 @@ pub struct Importer<'d> {
     /// The vertical extent (m) of the last collision shape kept as an obstacle: a movable
     /// body's height as it rests on the floor.
     pub shape_height: f64,
+    /// How high the top of the shape being emitted stands above the floor (m): set by the
+    /// checks each shape passes before it is emitted (infinite when none has).
+    pub shape_top: f64,
     visits: usize,
     too_deep: bool,
     /// The e-puck whose `controller` field names the controller of the run, if one does.
@@ -262,12 +268,15 @@ fn walk<'d>(
         body_y_up: !doc.version.has_z_up_protos(),
         obstacles: Vec::new(),
         obstacle_looks: Vec::new(),
+        obstacle_tops: Vec::new(),
         look: Look::UNREAD,
         sensed_obstacles: Vec::new(),
         sensed_looks: Vec::new(),
+        sensed_tops: Vec::new(),
         sensed_owners: Vec::new(),
         sensing: false,
         shape_height: 0.0,
+        shape_top: f64::INFINITY,
         floor_colour: None,
         floor_reflectance: None,
         floor_seen: false,
@@ -336,6 +345,7 @@ fn finish((mut importer, basic_time_step_ms): (Importer<'_>, f64)) -> WbtImport 
             for (shape, look) in shapes {
                 importer.obstacles.push(shape);
                 importer.obstacle_looks.push(look);
+                importer.obstacle_tops.push(f64::INFINITY);
             }
             importer.obstacle_owners.extend(owners);
         }
@@ -349,8 +359,10 @@ fn finish((mut importer, basic_time_step_ms): (Importer<'_>, f64)) -> WbtImport 
     let mut import = WbtImport {
         obstacles: importer.obstacles,
         obstacle_looks: importer.obstacle_looks,
+        obstacle_tops: importer.obstacle_tops,
         sensed_obstacles: importer.sensed_obstacles,
         sensed_looks: importer.sensed_looks,
+        sensed_tops: importer.sensed_tops,
         sensed_owners: importer.sensed_owners,
         floor_colour: importer.floor_colour,
         floor_reflectance: importer.floor_reflectance,
@@ -575,11 +587,13 @@ impl<'d> Importer<'d> {
         if self.sensing {
             self.sensed_obstacles.push(obstacle);
             self.sensed_looks.push(self.look);
+            self.sensed_tops.push(self.shape_top);
             self.sensed_owners.push(owners);
             return;
         }
         self.obstacles.push(obstacle);
         self.obstacle_looks.push(self.look);
+        self.obstacle_tops.push(self.shape_top);
         self.obstacle_owners.push(owners);
     }
 
@@ -775,6 +789,7 @@ impl<'d> Importer<'d> {
         };
         self.obstacles.truncate(first);
         self.obstacle_looks.truncate(first);
+        self.obstacle_tops.truncate(first);
         self.body_owners.extend(self.obstacle_owners.drain(first..));
         let sphere = sphere && matches!(body, BodySpec::Circle { .. });
         self.body_looks.push(BodyLook {
@@ -1095,6 +1110,7 @@ impl<'d> Importer<'d> {
         let owners = self.obstacle_owners.split_off(first);
         let shapes = self.obstacles.split_off(first);
         let looks = self.obstacle_looks.split_off(first);
+        self.obstacle_tops.truncate(first);
         (shapes.into_iter().zip(looks).collect(), owners)
     }
 

@@ -153,12 +153,17 @@ pub struct WbtImport {
     /// factor) and its infra-red reflection factor, in the order of `obstacles` (see
     /// `appearance.rs`).
     pub obstacle_looks: Vec<Look>,
+    /// How high the top of each obstacle stands above the floor (m), in the order of
+    /// `obstacles`; infinite where the import does not know (another robot's body).
+    pub obstacle_tops: Vec<f64>,
     /// Obstacles only infra-red rays and cameras meet, in file order: visual-only shapes (of
     /// no Solid with a `boundingObject`) in the e-puck's proximity rays' way (see `sensed.rs`).
     /// The world keeps them as `sensed_only` walls, after the others.
     pub sensed_obstacles: Vec<Obstacle>,
     /// How each of `sensed_obstacles` looks.
     pub sensed_looks: Vec<Look>,
+    /// How high the top of each of `sensed_obstacles` stands above the floor (m).
+    pub sensed_tops: Vec<f64>,
     /// Per sensed-only obstacle, the lines of the nodes that hold it, as `obstacle_owners`:
     /// a supervisor moving one of those nodes moves it.
     pub sensed_owners: Vec<Vec<usize>>,

@@ -142,6 +142,12 @@ impl<'d> Importer<'d> {
     /// Whether a shape spanning `center_z +- half_z` meets the robot's height (a falling one, of
     /// an object with physics, meets it once on the floor).
     fn meets_robot(&mut self, center_z: f64, half_z: f64, owner: &str) -> bool {
+        // A falling shape comes to rest on the floor.
+        self.shape_top = if self.falls {
+            2.0 * half_z
+        } else {
+            center_z + half_z
+        };
         if self.sensing {
             return self.meets_proximity_rays(center_z, half_z);
         }

@@ -565,6 +565,28 @@ impl World {
         colours
     }
 
+    /// How high the top of each wall of [`World::walls`] stands above the floor (m), in the
+    /// same order: that of its `[[walls]]` entry when it gives one, infinite otherwise (the
+    /// grid's walls and the segments stand higher than any sensor's ray goes).
+    pub fn wall_tops(&self) -> Vec<f64> {
+        let solid = self.spec.walls.iter().filter(|w| !w.sensed_only);
+        let listed = solid.clone().count() + self.spec.segments.len();
+        let grid = self.walls().len().saturating_sub(listed);
+        let mut tops = vec![f64::INFINITY; grid];
+        tops.extend(solid.map(|w| w.height.map_or(f64::INFINITY, |h| h.get())));
+        tops.resize(self.walls().len(), f64::INFINITY);
+        tops
+    }
+
+    /// How high the top of each sensed-only wall stands above the floor (m), in the order of
+    /// the sensed-only walls; infinite where its entry gives none.
+    pub fn sensed_wall_tops(&self) -> Vec<f64> {
+        let sensed = self.spec.walls.iter().filter(|w| w.sensed_only);
+        sensed
+            .map(|w| w.height.map_or(f64::INFINITY, |h| h.get()))
+            .collect()
+    }
+
     /// The colour of paint region `index` of [`World::floor`] as a camera sees it (`None`: the
     /// grey of its reflectance).
     pub fn paint_colour(&self, index: usize) -> Option<[f64; 3]> {

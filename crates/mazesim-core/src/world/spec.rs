@@ -241,6 +241,11 @@ pub struct WallSpec {
     /// Colour as a camera sees it (`None`: the grey of its reflectance).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub colour: Option<Colour>,
+    /// How high its top stands above the floor, metres (`None`: higher than any sensor's ray
+    /// goes). A distance sensor's ray that rises over it, or falls onto its top, meets it
+    /// there (a Webots world's walls give theirs).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub height: Option<Positive>,
     /// Seen and not touched: infra-red rays and cameras meet it, nothing collides with it and
     /// range sensors and ground sensors pass it by (a Webots Solid without a `boundingObject`,
     /// such as a goal object the robot drives through).
