@@ -31,7 +31,7 @@ from mazesim.webots.distance_rays import (
 )
 from mazesim.webots.own_sensors import own_sensors
 from mazesim.webots.scene import read_scene
-from supervised_world import slot_readings
+from supervised_world import slot_readings, supervisor_in
 
 #: A generic table: 0 m reads 0, 0.15 m (the rays' reach) reads 1000.
 TABLE = "lookupTable [ 0 0 0 0.15 1000 0 ]"
@@ -243,3 +243,35 @@ def test_a_falling_ray_meets_a_wall_s_top_and_a_sonar_does_not_hear_it(tmp_path:
     )
     assert generic == pytest.approx(0.02 / math.sin(0.5) / 0.15 * 1000, abs=0.5)
     assert sonar == 1000.0
+
+
+@pytest.mark.usefixtures("fresh_robot")
+@pytest.mark.parametrize(("height", "seen"), [(0.05, False), (0.3, True)])
+def test_a_lidar_and_a_range_finder_pass_over_a_box_lower_than_them(
+    tmp_path: Path, height: float, seen: bool
+) -> None:
+    # A one-layer lidar and a range finder 11 cm up, level, in the slot (3 cm ahead): a box
+    # whose face is 4 cm ahead of them is in their way when it is 30 cm tall, under them at 5.
+    devices = (
+        'Lidar { translation 0 0 0.1097 name "lidar" horizontalResolution 3 fieldOfView 0.1 '
+        "numberOfLayers 1 maxRange 1 }\n"
+        'RangeFinder { translation 0 0 0.1097 name "depth" width 3 height 1 fieldOfView 0.1 '
+        "maxRange 1 }\n"
+    )
+    robot = supervisor_in(
+        tmp_path,
+        "#VRML_SIM R2025a utf8\nWorldInfo { basicTimeStep 16 }\nRectangleArena { floorSize 2 2 }\n"
+        + _box(0.07, height)
+        + f'E-puck {{ supervisor TRUE controller "<extern>" groundSensorsSlot [ {devices} ] }}\n',
+    )
+    lidar, depth = robot.getDevice("lidar"), robot.getDevice("depth")
+    lidar.enable(16)
+    depth.enable(16)
+    robot.step(16)
+    middle = lidar.getRangeImage()[1]
+    ahead = depth.getRangeImage()[1]
+    if seen:
+        assert middle == pytest.approx(0.04, abs=1e-3) and ahead == pytest.approx(0.04, abs=1e-3)
+    else:
+        # Over the box, the arena's 10 cm wall (0.97 m ahead) is under the rays too.
+        assert middle == math.inf and ahead == math.inf

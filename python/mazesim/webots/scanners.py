@@ -3,12 +3,15 @@ node in an extension slot, or among a plain robot's children), measured by casti
 the walls as they stand, from where the device sits on the robot.
 
 Webots renders both from OpenGL depth (reference manual, Lidar and RangeFinder). In mazesim's
-2-D world walls have no height and there is no ceiling: a ray tilted up or down by ``e`` meets a
-wall at horizontal distance ``h`` after ``h / cos(e)``, and a ray tilted down from height ``z``
-meets the floor ``z / sin(e)`` along it. A lidar's points go from the left of its field of view
-to the right (``fieldOfView / 2`` down to ``-fieldOfView / 2 + step`` about its z axis), its
-layers from the top; a range finder's pixels give the depth along its axis (a flat wall ahead
-reads the same depth across the image), its rows the same as its middle row. Distances beyond
+world each wall stands from the floor to its top (the import writes it; a wall of a mazesim
+world without a ``height`` stands above every ray) and there is no ceiling: a ray tilted up or
+down by ``e`` meets a wall at horizontal distance ``h`` after ``h / cos(e)`` where it crosses the
+wall below its top (it passes over a lower wall, or meets the top of one it falls onto), and a
+ray tilted down from height ``z`` meets the floor ``z / sin(e)`` along it. A lidar's points go
+from the left of its field of view to the right (``fieldOfView / 2`` down to ``-fieldOfView / 2
++ step`` about its z axis), its layers from the top; a range finder's pixels give the depth
+along its axis (a flat wall ahead reads the same depth across the image), its rows the same as
+its middle row. Distances beyond
 ``maxRange`` read ``inf``, as in Webots.
 """
 
@@ -59,10 +62,18 @@ class _Rays:
         self._mount = mount
         self._walls = WallsNow(simulation, sensed=True)
 
-    def horizontal(self, angles: np.ndarray) -> np.ndarray:
+    def height(self) -> float:
+        """The mount's height above the floor: its own above the robot's origin, plus how high
+        the origin rests (a plain Robot's on its wheels; an E-puck's is on the floor)."""
+        return self._mount.z + self._simulation.scene.origin_height
+
+    def horizontal(self, angles: np.ndarray, elevation: float = 0.0) -> np.ndarray:
+        """How far across the floor each ray turned ``angles`` and tilted up by ``elevation``
+        (rad; negative: down) runs to the first wall it meets (``inf``: none)."""
         x, y, heading = self._mount.world_pose(self._simulation.simulator.pose)
         directions = np.stack([np.cos(heading + angles), np.sin(heading + angles)], axis=1)
-        distance, _ = self._walls.walls().cast((x, y), directions)
+        rise = np.full(directions.shape[0], math.tan(elevation))
+        distance, _, _ = self._walls.walls().cast_sloped((x, y), directions, self.height(), rise)
         return np.asarray(distance, dtype=float)
 
 
@@ -77,7 +88,6 @@ class RayLidar(Lidar):
     ) -> None:
         super().__init__(name, simulation)
         self._rays = _Rays(simulation, mount)
-        self._height = mount.z
         named = f"Lidar {_shown(name)}"
         self._points = device_side(
             _number(fields, "horizontalResolution", 512), 512, f"{named} horizontalResolution", 0
@@ -112,12 +122,13 @@ class RayLidar(Lidar):
 
     def _read(self) -> list[float]:  # type: ignore[override]
         self._read_at = float(self._simulation.time)
-        flat = self._rays.horizontal(self._angles())
+        angles = self._angles()
+        height = self._rays.height()
         ranges: list[float] = []
         for elevation in self._elevations():
-            along = flat / math.cos(elevation)
-            if elevation < 0.0 and self._height > 0.0:
-                along = np.minimum(along, self._height / math.sin(-elevation))
+            along = self._rays.horizontal(angles, elevation) / math.cos(elevation)
+            if elevation < 0.0 and height > 0.0:
+                along = np.minimum(along, height / math.sin(-elevation))
             along = np.where((along > self._max_range) | (along < self._min_range), np.inf, along)
             ranges.extend(float(r) for r in along)
         return ranges
