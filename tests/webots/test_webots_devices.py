@@ -693,14 +693,15 @@ def test_robotis_lds01_is_the_lidar_it_holds_and_an_unknown_proto_among_children
     """Webots' ``RobotisLds01`` among a plain robot's children is the Lidar "LDS-01" of its
     PROTO (360 ranges all round, 0.12 to 3.5 m): it was dropped without a word, and the
     controller's ``getDevice('LDS-01')`` found nothing. A PROTO mazesim does not read there
-    is named in a warning, as one in a slot is."""
+    is named in a warning, as one in a slot is; one of Webots' solid PROTOs (an expanded
+    E-puck's ring is a SolidPipe) is a part of the body, not said."""
     from mazesim.webots import import_wbt_text
 
     text = (
         "#VRML_SIM R2023b utf8\n"
         'Robot {\n  name "e-puck"\n  children [\n    DEF TURRET_SLOT Pose {\n'
         "      translation 0 0 0.07\n      children [\n        RobotisLds01 { }\n"
-        "        HokuyoUnheardOf { }\n      ]\n    }\n  ]\n}\n"
+        "        HokuyoUnheardOf { }\n      ]\n    }\n    SolidPipe { }\n  ]\n}\n"
     )
     _, report = import_wbt_text(text)
     lidar = {d["name"]: d for d in report["extension_devices"]}["LDS-01"]

@@ -22,6 +22,11 @@ __all__ = ["FloorPaint", "WallBoxes"]
 Floats = npt.NDArray[np.float64]
 
 
+#: How many of the walls a camera's column crosses first its pixels weigh (a pixel passing over
+#: that many low walls sees past them).
+COLUMN_CANDIDATES = 8
+
+
 class WallBoxes:
     """The walls of a world as oriented boxes, ready for many rays at once; with ``sensed``, its
     sensed-only walls too (after the others), as infra-red rays and cameras see them. Seen from
@@ -158,30 +163,89 @@ class WallBoxes:
         return distance, np.where(np.isfinite(distance), nearest, -1)
 
     def cast_sloped(
-        self, origin: tuple[float, float], directions: Floats, height: float, slopes: Floats
+        self,
+        origin: tuple[float, float],
+        directions: Floats,
+        height: float,
+        slopes: Floats,
+        untopped: float = math.inf,
     ) -> tuple[Floats, npt.NDArray[np.intp], npt.NDArray[np.bool_]]:
         """As :meth:`cast_walls`, for rays that leave ``origin`` ``height`` above the floor and
-        rise by ``slopes`` (one per ray; negative: falling) for each metre they run across it:
-        a ray meets a wall's side where it is no higher than the wall's top there, falls onto
-        its top, or passes over it. Returns each ray's parameter at the first wall met (across
-        the floor; ``inf``: none), that wall's index (-1) and whether it met the wall's top."""
+        rise by ``slopes`` (one per ray; negative: falling) for each unit of their parameter
+        (a metre across the floor for a unit direction): a ray meets a wall's side where it is
+        no higher than the wall's top there, falls onto its top, or passes over it; a wall the
+        world gives no top stands ``untopped`` high. Returns each ray's parameter at the first
+        wall met (``inf``: none), that wall's index (-1) and whether it met the wall's top."""
         count = directions.shape[0]
         if self.center.shape[0] == 0:
             return np.full(count, np.inf), np.full(count, -1, dtype=np.intp), np.zeros(count, bool)
         near, far = self._entries(origin, directions)
-        slope = slopes[:, None]
-        crossed = near <= far
-        # A box a ray misses has no entry (inf times a level ray's 0 slope is NaN: no side).
-        with np.errstate(divide="ignore", invalid="ignore"):
-            side = crossed & (height + slope * near <= self.top)
-            onto = (self.top - height) / slope
-        on_top = crossed & ~side & (slope < 0.0) & (onto >= near) & (onto <= far)
-        t = np.where(side, near, np.where(on_top, onto, np.inf))
+        t, on_top = self._sloped_hits(near, far, height, slopes[:, None], untopped)
         nearest = np.argmin(t, axis=1)
         rows = np.arange(count)
         distance = t[rows, nearest]
         met = np.isfinite(distance)
         return distance, np.where(met, nearest, -1), met & on_top[rows, nearest]
+
+    def cast_columns(
+        self,
+        origin: tuple[float, float],
+        directions: Floats,
+        height: float,
+        slopes: Floats,
+        untopped: float = math.inf,
+    ) -> tuple[Floats, npt.NDArray[np.intp]]:
+        """As :meth:`cast_sloped` for a grid of rays whose columns run across the floor along
+        ``directions`` ((W, 2)) and whose rows rise by ``slopes`` ((H, W)), as a level camera's
+        pixels do: each pixel's parameter at the first wall it meets ((H, W); ``inf``: none)
+        and that wall's index (-1). A column weighs the :data:`COLUMN_CANDIDATES` walls it
+        crosses first, nearest first, until no pixel can meet a nearer one."""
+        distance = np.full(slopes.shape, np.inf)
+        wall = np.full(slopes.shape, -1, dtype=np.intp)
+        if self.center.shape[0] == 0:
+            return distance, wall
+        near, far = self._entries(origin, directions)
+        near = np.where(near <= far, near, np.inf)
+        keep = min(COLUMN_CANDIDATES, near.shape[1])
+        first = np.argpartition(near, keep - 1, axis=1)[:, :keep]  # (W, K)
+        order = np.argsort(np.take_along_axis(near, first, axis=1), axis=1)
+        first = np.take_along_axis(first, order, axis=1)
+        near_first = np.take_along_axis(near, first, axis=1)
+        far_first = np.take_along_axis(far, first, axis=1)
+        for k in range(keep):
+            # A wall entered no nearer than every pixel's hit so far hides nothing.
+            if not (near_first[None, :, k] < distance).any():
+                break
+            t, _ = self._sloped_hits(
+                near_first[None, :, k], far_first[None, :, k], height, slopes, untopped,
+                first[None, :, k],
+            )  # fmt: skip
+            nearer = t < distance
+            distance = np.where(nearer, t, distance)
+            wall = np.where(nearer, first[None, :, k], wall)
+        return distance, wall
+
+    def _sloped_hits(
+        self,
+        near: Floats,
+        far: Floats,
+        height: float,
+        slope: Floats,
+        untopped: float,
+        index: npt.NDArray[np.intp] | None = None,
+    ) -> tuple[Floats, npt.NDArray[np.bool_]]:
+        """Where rays entering boxes at ``near`` and leaving at ``far`` (the boxes of indices
+        ``index``, all by default) meet them, rising ``slope`` from ``height``, and whether on
+        their tops (see :meth:`cast_sloped`)."""
+        top = self.top if index is None else self.top[index]
+        top = np.where(np.isfinite(top), top, untopped)
+        crossed = near <= far
+        # A box a ray misses has no entry (inf times a level ray's 0 slope is NaN: no side).
+        with np.errstate(divide="ignore", invalid="ignore"):
+            side = crossed & (height + slope * near <= top)
+            onto = (top - height) / slope
+        on_top = crossed & ~side & (slope < 0.0) & (onto >= near) & (onto <= far)
+        return np.where(side, near, np.where(on_top, onto, np.inf)), on_top
 
     def _entries(self, origin: tuple[float, float], directions: Floats) -> tuple[Floats, Floats]:
         """Where each ray (rows) enters and leaves each box (columns), as ray parameters (the

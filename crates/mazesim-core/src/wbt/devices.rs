@@ -291,6 +291,12 @@ const SEEN_THROUGH: &[&str] = &[
     "SpotLight",
     "DirectionalLight",
     "Pi-puck",
+    // Webots' solid PROTOs (projects/objects/solids), parts of a robot's body that hold no
+    // device: an expanded E-puck's ring is a SolidPipe.
+    "SolidBox",
+    "SolidPipe",
+    "SolidRoundedBox",
+    "SolidTorus",
 ];
 /// Fields that place or hold a node rather than describe the device.
 const STRUCTURE_FIELDS: &[&str] = &[
