@@ -67,6 +67,9 @@ CAMERA_Z = 0.028
 #: Wall height (m) when the world gives none (a mazesim world's wall without ``height``): the
 #: e-puck worlds' usual walls.
 WALL_HEIGHT = 0.1
+#: How many of the walls a level camera's column crosses first its pixels weigh (a pixel that
+#: passes over that many lower walls sees no wall beyond).
+COLUMN_CANDIDATES = 8
 #: Grey of a wall of reflectance 1 (walls are drawn a little darker than a white floor).
 WALL_SHADE = 0.8
 #: A JPEG of a quality above this keeps its colours at full resolution (4:4:4), as Webots'
@@ -219,7 +222,9 @@ def render(
     if view.pitch == 0.0 and view.axes is None:
         # A level camera: every row of a column runs along the same line across the floor.
         across = np.stack([dx[0], dy[0]], axis=1)
-        wall_t, wall = walls.cast_columns((ox, oy), across, view.z, rise, view.wall_height)
+        wall_t, wall, _ = walls.cast_sloped(
+            (ox, oy), across, view.z, rise, view.wall_height, COLUMN_CANDIDATES
+        )
     else:
         # Each pixel casts its own ray; one that meets the floor nearer than the nearest wall
         # is, seen from above, sees the floor whatever wall it would meet: it casts none.

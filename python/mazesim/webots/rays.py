@@ -22,11 +22,6 @@ __all__ = ["FloorPaint", "WallBoxes"]
 Floats = npt.NDArray[np.float64]
 
 
-#: How many of the walls a camera's column crosses first its pixels weigh (a pixel passing over
-#: that many low walls sees past them).
-COLUMN_CANDIDATES = 8
-
-
 class WallBoxes:
     """The walls of a world as oriented boxes, ready for many rays at once; with ``sensed``, its
     sensed-only walls too (after the others), as infra-red rays and cameras see them. Seen from
@@ -169,61 +164,48 @@ class WallBoxes:
         height: float,
         slopes: Floats,
         untopped: float = math.inf,
+        candidates: int | None = None,
     ) -> tuple[Floats, npt.NDArray[np.intp], npt.NDArray[np.bool_]]:
         """As :meth:`cast_walls`, for rays that leave ``origin`` ``height`` above the floor and
-        rise by ``slopes`` (one per ray; negative: falling) for each unit of their parameter
-        (a metre across the floor for a unit direction): a ray meets a wall's side where it is
-        no higher than the wall's top there, falls onto its top, or passes over it; a wall the
-        world gives no top stands ``untopped`` high. Returns each ray's parameter at the first
-        wall met (``inf``: none), that wall's index (-1) and whether it met the wall's top."""
-        count = directions.shape[0]
-        if self.center.shape[0] == 0:
-            return np.full(count, np.inf), np.full(count, -1, dtype=np.intp), np.zeros(count, bool)
-        near, far = self._entries(origin, directions)
-        t, on_top = self._sloped_hits(near, far, height, slopes[:, None], untopped)
-        nearest = np.argmin(t, axis=1)
-        rows = np.arange(count)
-        distance = t[rows, nearest]
-        met = np.isfinite(distance)
-        return distance, np.where(met, nearest, -1), met & on_top[rows, nearest]
+        rise by ``slopes`` for each unit of their parameter (a metre across the floor for a
+        unit direction; negative: falling): one slope per ray ((N,)), or rows of them ((H, N)),
+        rays running along the same lines across the floor at different slopes, as a level
+        camera's pixels do. A ray meets a wall's side where it is no higher than the wall's top
+        there, falls onto its top, or passes over it; a wall the world gives no top stands
+        ``untopped`` high. Each line weighs the walls it crosses nearest first (at most
+        ``candidates`` of them; all by default) until no ray can meet a nearer one.
 
-    def cast_columns(
-        self,
-        origin: tuple[float, float],
-        directions: Floats,
-        height: float,
-        slopes: Floats,
-        untopped: float = math.inf,
-    ) -> tuple[Floats, npt.NDArray[np.intp]]:
-        """As :meth:`cast_sloped` for a grid of rays whose columns run across the floor along
-        ``directions`` ((W, 2)) and whose rows rise by ``slopes`` ((H, W)), as a level camera's
-        pixels do: each pixel's parameter at the first wall it meets ((H, W); ``inf``: none)
-        and that wall's index (-1). A column weighs the :data:`COLUMN_CANDIDATES` walls it
-        crosses first, nearest first, until no pixel can meet a nearer one."""
-        distance = np.full(slopes.shape, np.inf)
-        wall = np.full(slopes.shape, -1, dtype=np.intp)
-        if self.center.shape[0] == 0:
-            return distance, wall
-        near, far = self._entries(origin, directions)
-        near = np.where(near <= far, near, np.inf)
-        keep = min(COLUMN_CANDIDATES, near.shape[1])
-        first = np.argpartition(near, keep - 1, axis=1)[:, :keep]  # (W, K)
-        order = np.argsort(np.take_along_axis(near, first, axis=1), axis=1)
-        first = np.take_along_axis(first, order, axis=1)
-        near_first = np.take_along_axis(near, first, axis=1)
-        far_first = np.take_along_axis(far, first, axis=1)
-        for k in range(keep):
-            # A wall entered no nearer than every pixel's hit so far hides nothing.
-            if not (near_first[None, :, k] < distance).any():
-                break
-            t, _ = self._sloped_hits(
-                near_first[None, :, k], far_first[None, :, k], height, slopes, untopped,
-                first[None, :, k],
-            )  # fmt: skip
-            nearer = t < distance
-            distance = np.where(nearer, t, distance)
-            wall = np.where(nearer, first[None, :, k], wall)
-        return distance, wall
+        Returns:
+            Each ray's parameter at the first wall met (``inf``: none), that wall's index (-1)
+            and whether it met the wall's top, shaped as ``slopes``.
+        """
+        grid = np.atleast_2d(slopes)
+        distance = np.full(grid.shape, np.inf)
+        wall = np.full(grid.shape, -1, dtype=np.intp)
+        on_top = np.zeros(grid.shape, dtype=bool)
+        if self.center.shape[0] > 0:
+            near, far = self._entries(origin, directions)
+            near = np.where(near <= far, near, np.inf)
+            keep = near.shape[1] if candidates is None else min(candidates, near.shape[1])
+            first = np.argpartition(near, keep - 1, axis=1)[:, :keep]  # (N, K)
+            order = np.argsort(np.take_along_axis(near, first, axis=1), axis=1)
+            first = np.take_along_axis(first, order, axis=1)
+            near_first = np.take_along_axis(near, first, axis=1)
+            far_first = np.take_along_axis(far, first, axis=1)
+            for k in range(keep):
+                # A wall entered no nearer than every ray's hit so far hides nothing.
+                if not (near_first[None, :, k] < distance).any():
+                    break
+                index = first[None, :, k]
+                t, top = self._sloped_hits(
+                    near_first[None, :, k], far_first[None, :, k], height, grid, untopped, index
+                )
+                nearer = t < distance
+                distance = np.where(nearer, t, distance)
+                wall = np.where(nearer, index, wall)
+                on_top = np.where(nearer, top, on_top)
+        shape = np.shape(slopes)
+        return distance.reshape(shape), wall.reshape(shape), on_top.reshape(shape)
 
     def _sloped_hits(
         self,
