@@ -78,6 +78,12 @@ def test_the_fields_are_corrected_as_webots_corrects_them(
     assert len(DistanceRays.of(count, aperture, kind=kind)) == expected
 
 
+def test_a_gaussian_too_narrow_for_every_ray_weighs_the_nearest_rays_alike() -> None:
+    # exp(-(0.5 / 1e-300)^2) is 0 for both rays of a pair: the weights stay finite.
+    assert DistanceRays.of(2, 1.0, gaussian_width=1e-300).weights == pytest.approx([0.5, 0.5])
+    assert DistanceRays.of(4, 1.0, gaussian_width=1e-300).weights == pytest.approx([1, 0, 0, 0])
+
+
 def test_a_negative_aperture_lays_the_rays_as_its_opposite_does() -> None:
     assert DistanceRays.of(5, -1.0).directions == pytest.approx(DistanceRays.of(5, 1.0).directions)
 

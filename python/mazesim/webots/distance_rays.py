@@ -125,8 +125,13 @@ class DistanceRays:
         directions = np.stack(
             [np.cos(theta), np.sin(theta) * np.sin(turn), -np.sin(theta) * np.cos(turn)], axis=1
         )
-        spread = theta / (aperture * gaussian_width)
-        weights = np.exp(-(spread**2))
+        # exp(-(theta / (aperture * gaussianWidth))^2), measured from the nearest ray's so that
+        # a narrow gaussian does not underflow to 0 for every ray (the same weights once scaled
+        # to sum to 1).
+        beyond = theta**2 - theta.min() ** 2
+        with np.errstate(divide="ignore", over="ignore", invalid="ignore"):
+            spread = np.where(beyond > 0.0, beyond / (aperture * gaussian_width) ** 2, 0.0)
+        weights = np.exp(-spread)
         return cls(directions, weights / weights.sum())
 
     def __len__(self) -> int:
