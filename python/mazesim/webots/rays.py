@@ -185,25 +185,24 @@ class WallBoxes:
         on_top = np.zeros(grid.shape, dtype=bool)
         if self.center.shape[0] > 0:
             near, far = self._entries(origin, directions)
-            near = np.where(near <= far, near, np.inf)
-            keep = near.shape[1] if candidates is None else min(candidates, near.shape[1])
-            first = np.argpartition(near, keep - 1, axis=1)[:, :keep]  # (N, K)
-            order = np.argsort(np.take_along_axis(near, first, axis=1), axis=1)
-            first = np.take_along_axis(first, order, axis=1)
-            near_first = np.take_along_axis(near, first, axis=1)
-            far_first = np.take_along_axis(far, first, axis=1)
-            for k in range(keep):
+            # The entries of the walls each line has yet to weigh (inf: weighed, or missed).
+            ahead = np.where(near <= far, near, np.inf)
+            lines = np.arange(ahead.shape[0])
+            count = ahead.shape[1] if candidates is None else min(candidates, ahead.shape[1])
+            for _ in range(count):
+                index = np.argmin(ahead, axis=1)
+                entry = ahead[lines, index]
                 # A wall entered no nearer than every ray's hit so far hides nothing.
-                if not (near_first[None, :, k] < distance).any():
+                if not (entry[None, :] < distance).any():
                     break
-                index = first[None, :, k]
                 t, top = self._sloped_hits(
-                    near_first[None, :, k], far_first[None, :, k], height, grid, untopped, index
+                    entry[None, :], far[lines, index][None, :], height, grid, untopped, index
                 )
                 nearer = t < distance
                 distance = np.where(nearer, t, distance)
-                wall = np.where(nearer, index, wall)
+                wall = np.where(nearer, index[None, :], wall)
                 on_top = np.where(nearer, top, on_top)
+                ahead[lines, index] = np.inf
         shape = np.shape(slopes)
         return distance.reshape(shape), wall.reshape(shape), on_top.reshape(shape)
 
