@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import math
 import struct
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -67,12 +67,13 @@ class _Rays:
         the origin rests (a plain Robot's on its wheels; an E-puck's is on the floor)."""
         return self._mount.z + self._simulation.scene.origin_height
 
-    def horizontal(self, angles: np.ndarray, elevation: float = 0.0) -> np.ndarray:
-        """How far across the floor each ray turned ``angles`` and tilted up by ``elevation``
-        (rad; negative: down) runs to the first wall it meets (``inf``: none)."""
+    def horizontal(self, angles: np.ndarray, elevations: Sequence[float] = (0.0,)) -> np.ndarray:
+        """How far across the floor each ray turned ``angles`` (columns) and tilted up by each
+        of ``elevations`` (rows; rad, negative: down) runs to the first wall it meets (``inf``:
+        none), the layers cast together."""
         x, y, heading = self._mount.world_pose(self._simulation.simulator.pose)
         directions = np.stack([np.cos(heading + angles), np.sin(heading + angles)], axis=1)
-        rise = np.full(directions.shape[0], math.tan(elevation))
+        rise = np.tan(np.asarray(elevations, dtype=float))[:, None] * np.ones(len(angles))
         distance, _, _ = self._walls.walls().cast_sloped((x, y), directions, self.height(), rise)
         return np.asarray(distance, dtype=float)
 
@@ -122,11 +123,12 @@ class RayLidar(Lidar):
 
     def _read(self) -> list[float]:  # type: ignore[override]
         self._read_at = float(self._simulation.time)
-        angles = self._angles()
+        elevations = self._elevations()
         height = self._rays.height()
+        flat = self._rays.horizontal(self._angles(), elevations) if elevations else np.zeros((0,))
         ranges: list[float] = []
-        for elevation in self._elevations():
-            along = self._rays.horizontal(angles, elevation) / math.cos(elevation)
+        for elevation, layer in zip(elevations, flat):
+            along = layer / math.cos(elevation)
             if elevation < 0.0 and height > 0.0:
                 along = np.minimum(along, height / math.sin(-elevation))
             along = np.where((along > self._max_range) | (along < self._min_range), np.inf, along)
@@ -307,7 +309,7 @@ class RayRangeFinder(RangeFinder):
         half = math.tan(self._fov / 2)
         offsets = (np.arange(self._width) + 0.5 - self._width / 2) / (self._width / 2) * half
         angles = -np.arctan(offsets)
-        depth = self._rays.horizontal(angles) * np.cos(angles)
+        depth = self._rays.horizontal(angles)[0] * np.cos(angles)
         depth = np.where(depth > self._max_range, np.inf, depth)
         row = [float(d) for d in depth]
         return row * self._height
