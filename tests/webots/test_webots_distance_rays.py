@@ -281,37 +281,3 @@ def test_a_lidar_and_a_range_finder_pass_over_a_box_lower_than_them(
     else:
         # Over the box, the arena's 10 cm wall (0.97 m ahead) is under the rays too.
         assert middle == math.inf and ahead == math.inf
-
-
-def _coloured_box(face_x: float, height: float, colour: str) -> str:
-    """A box of ``colour`` as ``_box`` places it."""
-    return (
-        f"Solid {{ translation {face_x + 0.05!r} 0 {height / 2!r} children [ DEF B Shape {{\n"
-        f"  appearance PBRAppearance {{ baseColor {colour} roughness 1 metalness 0 }}\n"
-        f"  geometry Box {{ size 0.1 0.6 {height!r} }} }} ] boundingObject USE B }}\n"
-    )
-
-
-@pytest.mark.usefixtures("fresh_robot")
-def test_the_camera_sees_each_wall_to_its_own_top_and_past_a_low_one(tmp_path: Path) -> None:
-    # The E-puck's camera (2.8 cm up, level) before a red box 2 cm tall whose face is 7 cm from
-    # it and a blue wall 30 cm tall 27 cm from it: the red box fills the rows below 6.5 degrees
-    # down, the blue wall every row above (its top is 45 degrees up, beyond the view's 18).
-    scenery = _coloured_box(0.1, 0.02, "1 0 0") + _coloured_box(0.3, 0.3, "0 0 1")
-    robot = supervisor_in(
-        tmp_path,
-        "#VRML_SIM R2025a utf8\nWorldInfo { basicTimeStep 16 }\nRectangleArena { floorSize 2 2 }\n"
-        + scenery
-        + 'E-puck { supervisor TRUE controller "<extern>" }\n',
-    )
-    camera = robot.getDevice("camera")
-    camera.enable(16)
-    robot.step(16)
-    width, height = camera.getWidth(), camera.getHeight()
-    image = np.frombuffer(camera.getImage(), dtype=np.uint8).reshape(height, width, 4)
-    column = image[:, width // 2, :3]  # B, G, R from the top row down
-    red = np.all(column == (0, 0, 204), axis=1)
-    blue = np.all(column == (204, 0, 0), axis=1)
-    assert blue[: height // 2].all(), column
-    assert red[-height // 4 :].all(), column
-    assert (red | blue).all(), column

@@ -5,10 +5,8 @@ field of view 0.84 rad, 52 x 39 pixels as in Webots' E-puck PROTO). A ray that m
 robot's body below its top sees that robot (the E-puck PROTO's colours), one that meets a ball
 (a movable body whose collision shape is a sphere, resting on the floor where it is now) sees
 it, 80 % of its colour; one that meets a wall
-(a sensed-only one too, which nothing collides with) below the wall's top, or falls onto its
-top, sees the wall, 80 % of its colour (a ray passing over a wall lower than it sees what lies
-beyond; a wall of a world that gives no top stands :data:`WALL_HEIGHT` high); a ray going down
-that meets the floor
+(a sensed-only one too, which nothing collides with) below the wall's height sees the wall, 80 %
+of its colour; a ray going down that meets the floor
 first sees the floor paint in its colour. A wall, paint or floor that gives no colour (see
 :meth:`mazesim.World.wall_colours`) is grey from its reflectance factor ``f``
 (``(f - 0.2) / 0.8``, so a white floor is 255 and black paint 0, the inverse of the infra-red
@@ -64,12 +62,8 @@ DEFAULT_FOV = 0.84
 #: The camera's position on the robot (m): ahead of the wheel axle, above the floor.
 CAMERA_X = 0.03
 CAMERA_Z = 0.028
-#: Wall height (m) when the world gives none (a mazesim world's wall without ``height``): the
-#: e-puck worlds' usual walls.
+#: Wall height (m) when the world gives none: the e-puck worlds' usual walls.
 WALL_HEIGHT = 0.1
-#: How many of the walls a level camera's column crosses first its pixels weigh (a pixel that
-#: passes over that many lower walls sees no wall beyond).
-COLUMN_CANDIDATES = 8
 #: Grey of a wall of reflectance 1 (walls are drawn a little darker than a white floor).
 WALL_SHADE = 0.8
 #: A JPEG of a quality above this keeps its colours at full resolution (4:4:4), as Webots'
@@ -220,11 +214,10 @@ def render(
     with np.errstate(divide="ignore", invalid="ignore"):
         floor_t = np.where(rise < 0.0, view.z / -rise, np.inf)
     if view.pitch == 0.0 and view.axes is None:
-        # A level camera: every row of a column runs along the same line across the floor.
-        across = np.stack([dx[0], dy[0]], axis=1)
-        wall_t, wall, _ = walls.cast_sloped(
-            (ox, oy), across, view.z, rise, view.wall_height, COLUMN_CANDIDATES
-        )
+        # A level camera: every row of a column casts the same ray along the floor.
+        column_t, column_wall = walls.cast_walls((ox, oy), np.stack([dx[0], dy[0]], axis=1))
+        wall_t = np.broadcast_to(column_t, rise.shape)
+        wall = np.broadcast_to(column_wall, rise.shape)
     else:
         # Each pixel casts its own ray; one that meets the floor nearer than the nearest wall
         # is, seen from above, sees the floor whatever wall it would meet: it casts none.
@@ -234,10 +227,11 @@ def render(
         wall = np.full(rise.shape, -1, dtype=np.intp)
         if casts.any():
             directions = np.stack([dx[casts], dy[casts]], axis=1)
-            wall_t[casts], wall[casts], _ = walls.cast_sloped(
-                (ox, oy), directions, view.z, rise[casts], view.wall_height
-            )
+            wall_t[casts], wall[casts] = walls.cast_walls((ox, oy), directions)
     sees_wall = np.isfinite(wall_t) & (wall_t <= floor_t)
+    # A ray that meets no wall (an open side of the world) has no height to compare.
+    hit_height = view.z + np.where(np.isfinite(wall_t), wall_t, 0.0) * rise
+    sees_wall &= hit_height <= view.wall_height
     robot_t = _robot_hits(view, (ox, oy), dx, dy, rise, robots)
     sees_robot = np.isfinite(robot_t) & (robot_t <= floor_t)
     sees_robot &= ~(sees_wall & (wall_t < robot_t))

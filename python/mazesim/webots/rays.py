@@ -189,44 +189,34 @@ class WallBoxes:
             ahead = np.where(near <= far, near, np.inf)
             lines = np.arange(ahead.shape[0])
             count = ahead.shape[1] if candidates is None else min(candidates, ahead.shape[1])
+            tops = np.where(np.isfinite(self.top), self.top, untopped)
+            tallest = float(np.max(tops))
             for _ in range(count):
                 index = np.argmin(ahead, axis=1)
                 entry = ahead[lines, index]
-                # A wall entered no nearer than every ray's hit so far hides nothing.
-                if not (entry[None, :] < distance).any():
+                # Per line, from the wall's and the rays' heights: the steepest slope that meets
+                # the wall's side (at its entry), that falls onto its top (by its exit), and
+                # above which a rising ray clears every wall's top from here on.
+                rise = tops[index] - height
+                with np.errstate(divide="ignore", invalid="ignore"):
+                    side_most = rise / entry
+                    top_most = rise / far[lines, index]
+                    clear = (tallest - height) / entry
+                # A ray whose hit so far is no farther than this entry, or that rises above
+                # every wall's top before it, meets nothing nearer from here on.
+                if not ((entry < distance) & ((grid < 0.0) | (grid <= clear))).any():
                     break
-                t, top = self._sloped_hits(
-                    entry[None, :], far[lines, index][None, :], height, grid, untopped, index
-                )
-                nearer = t < distance
+                side = grid <= side_most
+                onto = ~side & (grid < 0.0) & (grid <= top_most)
+                with np.errstate(divide="ignore", invalid="ignore"):
+                    t = np.where(side, entry, rise / grid)
+                nearer = (side | onto) & (t < distance)
                 distance = np.where(nearer, t, distance)
-                wall = np.where(nearer, index[None, :], wall)
-                on_top = np.where(nearer, top, on_top)
+                wall = np.where(nearer, index, wall)
+                on_top = np.where(nearer, onto, on_top)
                 ahead[lines, index] = np.inf
         shape = np.shape(slopes)
         return distance.reshape(shape), wall.reshape(shape), on_top.reshape(shape)
-
-    def _sloped_hits(
-        self,
-        near: Floats,
-        far: Floats,
-        height: float,
-        slope: Floats,
-        untopped: float,
-        index: npt.NDArray[np.intp] | None = None,
-    ) -> tuple[Floats, npt.NDArray[np.bool_]]:
-        """Where rays entering boxes at ``near`` and leaving at ``far`` (the boxes of indices
-        ``index``, all by default) meet them, rising ``slope`` from ``height``, and whether on
-        their tops (see :meth:`cast_sloped`)."""
-        top = self.top if index is None else self.top[index]
-        top = np.where(np.isfinite(top), top, untopped)
-        crossed = near <= far
-        # A box a ray misses has no entry (inf times a level ray's 0 slope is NaN: no side).
-        with np.errstate(divide="ignore", invalid="ignore"):
-            side = crossed & (height + slope * near <= top)
-            onto = (top - height) / slope
-        on_top = crossed & ~side & (slope < 0.0) & (onto >= near) & (onto <= far)
-        return np.where(side, near, np.where(on_top, onto, np.inf)), on_top
 
     def _entries(self, origin: tuple[float, float], directions: Floats) -> tuple[Floats, Floats]:
         """Where each ray (rows) enters and leaves each box (columns), as ray parameters (the
