@@ -164,7 +164,6 @@ class WallBoxes:
         height: float,
         slopes: Floats,
         untopped: float = math.inf,
-        candidates: int | None = None,
     ) -> tuple[Floats, npt.NDArray[np.intp], npt.NDArray[np.bool_]]:
         """As :meth:`cast_walls`, for rays that leave ``origin`` ``height`` above the floor and
         rise by ``slopes`` for each unit of their parameter (a metre across the floor for a
@@ -172,8 +171,8 @@ class WallBoxes:
         rays running along the same lines across the floor at different slopes, as a level
         camera's pixels do. A ray meets a wall's side where it is no higher than the wall's top
         there, falls onto its top, or passes over it; a wall the world gives no top stands
-        ``untopped`` high. Each line weighs the walls it crosses nearest first (at most
-        ``candidates`` of them; all by default) until no ray can meet a nearer one.
+        ``untopped`` high. Each line weighs the walls it crosses nearest first, until no ray
+        can meet a nearer one.
 
         Returns:
             Each ray's parameter at the first wall met (``inf``: none), that wall's index (-1)
@@ -188,10 +187,9 @@ class WallBoxes:
             # The entries of the walls each line has yet to weigh (inf: weighed, or missed).
             ahead = np.where(near <= far, near, np.inf)
             lines = np.arange(ahead.shape[0])
-            count = ahead.shape[1] if candidates is None else min(candidates, ahead.shape[1])
             tops = np.where(np.isfinite(self.top), self.top, untopped)
             tallest = float(np.max(tops))
-            for _ in range(count):
+            for _ in range(ahead.shape[1]):
                 index = np.argmin(ahead, axis=1)
                 entry = ahead[lines, index]
                 # Per line, from the wall's and the rays' heights: the steepest slope that meets
