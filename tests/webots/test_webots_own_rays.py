@@ -194,6 +194,22 @@ def test_what_the_2d_model_leaves_out_of_a_sensor_type_is_said() -> None:
     )
 
 
+def test_a_type_written_in_another_case_reads_as_webots_reads_it() -> None:
+    # Webots compares the field without case and takes "infrared" too: such a sensor reads the
+    # colour its ray meets as "infra-red" does, and nothing is said of it; "Sonar" is a sonar.
+    infra_red, _ = _dark_wall_readings("infra-red")
+    for written in ("Infra-Red", "infrared"):
+        readings, types = _dark_wall_readings(written)
+        assert types == [controller.DistanceSensor.INFRA_RED] * 8
+        assert np.array_equal(readings, infra_red)
+        scene = read_scene(ARENA + expanded_e_puck(tilt=0.0, sensor_type=written))
+        assert own_sensors("e-puck", scene).warnings == []
+    (warning,) = own_sensors(
+        "e-puck", read_scene(ARENA + expanded_e_puck(tilt=0.0, sensor_type="Sonar"))
+    ).warnings
+    assert "22.5 degrees" in warning and "expected one of" not in warning
+
+
 def test_a_sensor_of_the_world_reads_its_far_value_in_a_world_without_walls() -> None:
     # A Floor and no wall: the extension sensor's rays meet nothing (the cast took a wall's
     # reflectance from an empty table and stopped the first step with IndexError).

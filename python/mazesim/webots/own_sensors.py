@@ -29,6 +29,8 @@ from typing import Any
 from mazesim._core import RobotProfile
 from mazesim._toml import dump_toml, load_toml
 from mazesim.errors import MazesimError, _shown
+from mazesim.webots.distance_rays import INFRA_RED as INFRA_RED_TYPE
+from mazesim.webots.distance_rays import sensor_type
 from mazesim.webots.own_drive import drive_layout
 from mazesim.webots.scene import Row, Scene
 
@@ -198,12 +200,13 @@ def _ray_types(layout: Mapping[str, Any], scene: Scene) -> tuple[dict[str, str],
     by_type: dict[str, list[str]] = {}
     for sensor in layout.get("distance_sensors", []):
         found = scene.sensor_types.get(sensor["name"], INFRA_RED)
-        if found != INFRA_RED:
+        # Read as Webots reads the field: "Infrared" is infra-red, an unknown word a sonar.
+        if sensor_type(found) != INFRA_RED_TYPE:
             types[sensor["name"]] = found
             by_type.setdefault(found, []).append(repr(sensor["name"]))
     warnings = []
     for found, names in by_type.items():
-        limit = TYPE_LIMITS.get(found)
+        limit = TYPE_LIMITS.get(found.lower())
         if limit is None:
             limit = (
                 f"expected one of {', '.join(map(repr, [*TYPE_LIMITS, INFRA_RED]))}, found "

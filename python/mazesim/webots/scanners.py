@@ -63,9 +63,8 @@ class _Rays:
         self._walls = WallsNow(simulation, sensed=True)
 
     def height(self) -> float:
-        """The mount's height above the floor: its own above the robot's origin, plus how high
-        the origin rests (a plain Robot's on its wheels; an E-puck's is on the floor)."""
-        return self._mount.z + self._simulation.scene.origin_height
+        """The mount's height above the floor (:meth:`DeviceMount.height_above_floor`)."""
+        return self._mount.height_above_floor(self._simulation)
 
     def horizontal(self, angles: np.ndarray, elevations: Sequence[float] = (0.0,)) -> np.ndarray:
         """How far across the floor each ray turned ``angles`` (columns) and tilted up by each

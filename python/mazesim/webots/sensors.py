@@ -94,6 +94,11 @@ class DeviceMount:
         self.pitch = float(pitch)
         self.axes = axes_or_none(axes)
 
+    def height_above_floor(self, simulation: RobotSimulation) -> float:
+        """The device's height above the floor: its own above the robot's origin, plus how
+        high the origin rests (a plain Robot's on its wheels; an E-puck's is on the floor)."""
+        return self.z + simulation.scene.origin_height
+
     def world_pose(self, pose: tuple[float, float, float]) -> tuple[float, float, float]:
         """The device's x, y, heading in the world for a robot pose."""
         x, y, yaw = pose
@@ -639,7 +644,7 @@ class RayDistanceSensor(DistanceSensor):
         turned = heading + self._headings
         flat = np.stack([np.cos(turned), np.sin(turned)], axis=1)
         walls = self._walls.walls()
-        height = self._height()
+        height = self._mount.height_above_floor(self._simulation)
         rise = -np.tan(self._pitches)
         distance, wall, on_top = walls.cast_sloped((x, y), flat, height, rise)
         slant = np.maximum(np.cos(self._pitches), 1e-9)
@@ -650,26 +655,24 @@ class RayDistanceSensor(DistanceSensor):
             normals = walls.side_normals((x, y), flat, distance, wall)
             sides = slant * np.abs(np.sum(normals * flat, axis=1))
             incidence = np.where(on_top, incidence, sides)
-        for ray, pitch in enumerate(self._pitches):
-            steep = pitch > DOWNWARD_PITCH
-            floor = height / math.sin(pitch) if pitch > 0.0 and height > 0.0 else math.inf
-            if steep or floor < min(distances[ray], self.getMaxRange()):
-                distances[ray], factors[ray] = self._floor_hit(heading + self._headings[ray], pitch)
-                incidence[ray] = math.sin(pitch)
+        with np.errstate(divide="ignore"):
+            down = (self._pitches > 0.0) & (height > 0.0)
+            floor = np.where(down, height / np.sin(self._pitches), np.inf)
+        steep = self._pitches > DOWNWARD_PITCH
+        for ray in np.flatnonzero(steep | (floor < np.minimum(distances, self.getMaxRange()))):
+            pitch = float(self._pitches[ray])
+            distances[ray], factors[ray] = self._floor_hit(heading + self._headings[ray], pitch)
+            incidence[ray] = math.sin(pitch)
         return RayHits(distances, factors, incidence)
-
-    def _height(self) -> float:
-        """The mount's height above the floor: its own above the robot's origin, plus how high
-        the origin rests (a plain Robot's on its wheels; an E-puck's is on the floor)."""
-        return self._mount.z + self._simulation.scene.origin_height
 
     def _floor_hit(self, heading: float, pitch: float) -> tuple[float, float]:
         """How far a ray of ``heading`` (in the world) and ``pitch`` goes to the floor and the
         floor's reflection factor where it meets it: ``z / sin(pitch)`` away, ahead of the mount
         by ``z / tan(pitch)``. The height is the mount's as Webots has it (the R2022a E-puck's
-        slot holds a sensor 0.3 mm up), above the robot's resting origin (:meth:`_height`); one
-        on or below the floor's plane meets it a micrometre away."""
-        height = max(self._height(), 1e-6)
+        slot holds a sensor 0.3 mm up), above the robot's resting origin
+        (:meth:`DeviceMount.height_above_floor`); one on or below the floor's plane meets it a
+        micrometre away."""
+        height = max(self._mount.height_above_floor(self._simulation), 1e-6)
         sine = math.sin(pitch)
         ahead = height * math.cos(pitch) / sine
         x, y, _ = self._mount.world_pose(self._simulation.simulator.pose)
