@@ -9,6 +9,7 @@ import numpy.typing as npt
 
 __all__ = [
     "EPUCK_DEFAULT_CONTROLLER",
+    "ROBOT_REFLECTANCE",
     "AvoidCollisionSettings",
     "BatchSimulator",
     "DrivePerturbation",
@@ -45,6 +46,9 @@ __version__: str
 #: The controller the E-puck PROTO runs when its node leaves ``controller`` out (its declared
 #: default from Webots V8.5 to R2025a).
 EPUCK_DEFAULT_CONTROLLER: str
+#: The infra-red reflection factor of another robot's body as a robot's rays meet it (0.38: the
+#: E-puck PROTO's shell through Webots' infra-red model).
+ROBOT_REFLECTANCE: float
 
 def builtin_world_names() -> list[str]:
     """Names of the worlds embedded in the package."""

@@ -23,6 +23,7 @@ mod tasks;
 mod wbt;
 mod world;
 
+use mazesim_core::simulator::ROBOT_REFLECTANCE;
 use mazesim_core::wbt::EPUCK_DEFAULT_CONTROLLER;
 use pyo3::prelude::*;
 
@@ -105,6 +106,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     once_made::ready(m.py())?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("EPUCK_DEFAULT_CONTROLLER", EPUCK_DEFAULT_CONTROLLER)?;
+    m.add("ROBOT_REFLECTANCE", f64::from(ROBOT_REFLECTANCE))?;
     m.add_function(wrap_pyfunction!(builtin_world_names, m)?)?;
     m.add_function(wrap_pyfunction!(robot_profile_names, m)?)?;
     m.add_function(wrap_pyfunction!(sharp_volts_to_cm, m)?)?;

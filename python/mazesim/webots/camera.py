@@ -37,7 +37,7 @@ from mazesim.webots.node_types import node_type
 from mazesim.webots.rays import FloorPaint, WallBoxes
 from mazesim.webots.recognition import CameraPose, RecognisedObject, recogniser_of
 from mazesim.webots.robot_frames import Mount, RobotShape
-from mazesim.webots.walls_now import WallsNow
+from mazesim.webots.walls_now import OtherRobots, WallsNow
 
 if TYPE_CHECKING:
     from mazesim.webots.simulation import RobotSimulation
@@ -626,8 +626,7 @@ class Camera(_Sensor):
         self._rendered_walls: WallBoxes | None = None
         self._rendered_floor: FloorPaint | None = None
         self._value = None
-        #: Whether the simulator holds this robot alone (it has no ``other_robots``).
-        self._alone = False
+        self._robots = OtherRobots(simulation)
         #: The world's robots (import report entries) with their visual shapes, once read.
         self._others: list[tuple[Any, list[RobotShape]]] | None = None
         self._recogniser = recogniser_of(
@@ -646,7 +645,7 @@ class Camera(_Sensor):
         x, y, yaw = (float(v) for v in self._simulation.simulator.pose)
         fleet = self._fleet_now()
         bodies = self._bodies_now() + self._robot_shapes_now(fleet)
-        self._sampled = ((x, y, yaw), self._other_robots(fleet), bodies)
+        self._sampled = ((x, y, yaw), self._other_robots(), bodies)
         return True
 
     def _fleet_now(self) -> list[tuple[Any, Sequence[float]]]:
@@ -665,7 +664,7 @@ class Camera(_Sensor):
                 (robot, shapes.get(int(robot.get("line") or 0), []))
                 for robot in simulation.report.get("robots") or []
             ]
-        alone = not hasattr(simulation.simulator, "other_robots")
+        alone = not self._robots.shared()
         wanted = [
             bool(shapes) or (alone and robot.get("profile")) for robot, shapes in self._others
         ]
@@ -723,24 +722,10 @@ class Camera(_Sensor):
             self._rendered_floor = self._floor
         return self._pixels
 
-    def _other_robots(self, fleet: list[tuple[Any, Sequence[float]]]) -> list[RobotBody]:
-        """The other robots of a simulator shared with them (a
-        :class:`~mazesim.webots.shared_world.RobotView`, here or over a controller's pipe);
-        for a simulator of one robot, the e-pucks of the world run where they are now (of
-        ``fleet``), none in a run of one robot."""
-        if self._alone:
-            return [
-                RobotBody(float(pose[0]), float(pose[1]), ROBOT_RADIUS)
-                for (robot, _), pose in fleet
-                if robot.get("profile") is not None
-            ]
-        simulator: Any = self._simulation.simulator
-        try:
-            bodies = simulator.other_robots()
-        except AttributeError:
-            self._alone = True
-            return self._other_robots(fleet)
-        return [RobotBody(float(x), float(y), float(radius)) for x, y, radius in bodies]
+    def _other_robots(self) -> list[RobotBody]:
+        """The other robots of the world run where they are now (none in a run of one
+        robot)."""
+        return [RobotBody(x, y, radius) for x, y, radius in self._robots.now()]
 
     def _image(self) -> npt.NDArray[np.uint8] | None:
         if self._period_ms == 0 and self._sampled is None:

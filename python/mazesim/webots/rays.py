@@ -2,7 +2,9 @@
 
 The core casts the profile's own sensors; these casts serve what the world adds (a camera, a
 distance sensor in an extension slot), from the wall boxes of :meth:`World.wall_boxes`, their
-colours (:meth:`World.wall_colours`) and the floor's paint and colours.
+colours (:meth:`World.wall_colours`) and the floor's paint and colours; with what else stands on
+the floor (movable bodies, other robots: :meth:`WallBoxes.with_solids`) for the rays of the
+devices the world adds.
 """
 
 from __future__ import annotations
@@ -58,6 +60,40 @@ class WallBoxes:
         self.colour = colours
         #: How high each wall's top stands above the floor (m); inf where the world gives none.
         self.top = np.full(boxes.shape[0], np.inf) if tops is None else tops
+        #: Upright cylinders met after the boxes (:meth:`with_solids`): centres (K, 2) and radii;
+        #: their reflectances and tops follow the boxes' in :attr:`reflectance` and :attr:`top`.
+        self.disc_center = np.zeros((0, 2))
+        self.disc_radius = np.zeros(0)
+
+    def with_solids(
+        self, boxes: Floats, box_tops: Floats, discs: Floats, disc_tops: Floats
+    ) -> WallBoxes:
+        """A copy that meets more solids standing on the floor: ``boxes`` ((M, 6), as
+        :meth:`of_boxes` takes them) of tops ``box_tops``, after the walls, then upright
+        cylinders ``discs`` ((K, 4): centre x, y, radius, reflectance) of tops ``disc_tops``;
+        this one when there are none. The new boxes have no colour; indices past the boxes
+        (:meth:`cast_walls`) are cylinders."""
+        boxes = np.asarray(boxes, dtype=np.float64).reshape(-1, 6)
+        discs = np.asarray(discs, dtype=np.float64).reshape(-1, 4)
+        if not boxes.shape[0] and not discs.shape[0]:
+            return self
+        joined = copy.copy(self)
+        count = self.center.shape[0]
+        joined.center = np.concatenate([self.center, boxes[:, 0:2]])
+        joined.half = np.concatenate([self.half, boxes[:, 2:4] / 2.0])
+        joined.cos = np.concatenate([self.cos, np.cos(boxes[:, 4])])
+        joined.sin = np.concatenate([self.sin, np.sin(boxes[:, 4])])
+        joined.colour = np.concatenate([self.colour, np.full((boxes.shape[0], 3), np.nan)])
+        joined.disc_center = np.concatenate([self.disc_center, discs[:, 0:2]])
+        joined.disc_radius = np.concatenate([self.disc_radius, discs[:, 2]])
+        # Reflectances and tops: the boxes', then the cylinders'.
+        box_tops = np.asarray(box_tops, dtype=np.float64).reshape(-1)
+        disc_tops = np.asarray(disc_tops, dtype=np.float64).reshape(-1)
+        joined.reflectance = np.concatenate(
+            [self.reflectance[:count], boxes[:, 5], self.reflectance[count:], discs[:, 3]]
+        )
+        joined.top = np.concatenate([self.top[:count], box_tops, self.top[count:], disc_tops])
+        return joined
 
     def moved(
         self,
@@ -118,6 +154,14 @@ class WallBoxes:
         hit = wall >= 0
         if not hit.any():
             return normals
+        boxes = self.center.shape[0]
+        round_ = hit & (wall >= boxes)
+        if round_.any():
+            # A cylinder's side faces out from its axis.
+            index = wall[round_] - boxes
+            out = origin + distance[round_, None] * directions[round_] - self.disc_center[index]
+            normals[round_] = out / np.maximum(np.hypot(out[:, 0], out[:, 1]), 1e-12)[:, None]
+            hit = hit & ~round_
         index = wall[hit]
         x = origin[0] + distance[hit] * directions[hit, 0] - self.center[index, 0]
         y = origin[1] + distance[hit] * directions[hit, 1] - self.center[index, 1]
@@ -135,13 +179,15 @@ class WallBoxes:
     def nearest_distance(self, point: tuple[float, float]) -> float:
         """The distance from ``point``, seen from above, to the nearest wall (0 inside one;
         ``inf`` without walls), a hair short of it so that no ray meets a wall nearer."""
-        if self.center.shape[0] == 0:
+        if self.center.shape[0] + self.disc_radius.shape[0] == 0:
             return math.inf
         ox = point[0] - self.center[:, 0]
         oy = point[1] - self.center[:, 1]
         out_x = np.maximum(np.abs(self.cos * ox + self.sin * oy) - self.half[:, 0], 0.0)
         out_y = np.maximum(np.abs(-self.sin * ox + self.cos * oy) - self.half[:, 1], 0.0)
-        return float(np.min(np.hypot(out_x, out_y))) * (1.0 - 1e-9)
+        to_disc = np.hypot(point[0] - self.disc_center[:, 0], point[1] - self.disc_center[:, 1])
+        gaps = np.concatenate([np.hypot(out_x, out_y), np.maximum(to_disc - self.disc_radius, 0.0)])
+        return float(np.min(gaps)) * (1.0 - 1e-9)
 
     def cast_walls(
         self, origin: tuple[float, float], directions: Floats
@@ -149,7 +195,7 @@ class WallBoxes:
         """As :meth:`cast`, with the index of the first wall met (-1 when none) instead of its
         reflectance."""
         count = directions.shape[0]
-        if self.center.shape[0] == 0:
+        if self.top.shape[0] == 0:
             return np.full(count, np.inf), np.full(count, -1, dtype=np.intp)
         near, far = self._entries(origin, directions)
         t = np.where(near <= far, near, np.inf)
@@ -182,7 +228,7 @@ class WallBoxes:
         distance = np.full(grid.shape, np.inf)
         wall = np.full(grid.shape, -1, dtype=np.intp)
         on_top = np.zeros(grid.shape, dtype=bool)
-        if self.center.shape[0] > 0:
+        if self.top.shape[0] > 0:
             near, far = self._entries(origin, directions)
             # The entries of the walls each line has yet to weigh (inf: weighed, or missed).
             ahead = np.where(near <= far, near, np.inf)
@@ -217,8 +263,30 @@ class WallBoxes:
         return distance.reshape(shape), wall.reshape(shape), on_top.reshape(shape)
 
     def _entries(self, origin: tuple[float, float], directions: Floats) -> tuple[Floats, Floats]:
-        """Where each ray (rows) enters and leaves each box (columns), as ray parameters (the
-        entry no earlier than the origin); entry above exit where it misses the box."""
+        """Where each ray (rows) enters and leaves each box, then each cylinder (columns), as
+        ray parameters (the entry no earlier than the origin); entry above exit where it misses
+        it."""
+        near, far = self._box_entries(origin, directions)
+        if self.disc_radius.shape[0] == 0:
+            return near, far
+        # |origin + t d - centre| = radius: a t^2 + 2 b t + c = 0 (d need not be a unit).
+        ox = origin[0] - self.disc_center[:, 0]
+        oy = origin[1] - self.disc_center[:, 1]
+        a = np.sum(directions * directions, axis=1)[:, None]
+        b = directions[:, 0:1] * ox + directions[:, 1:2] * oy
+        c = ox * ox + oy * oy - self.disc_radius * self.disc_radius
+        with np.errstate(divide="ignore", invalid="ignore"):
+            root = np.sqrt(np.maximum(b * b - a * c, 0.0))
+            crossed = (b * b - a * c >= 0.0) & (a > 0.0)
+            enter = np.where(crossed, (-b - root) / a, np.inf)
+            leave = np.where(crossed, (-b + root) / a, -np.inf)
+        near = np.concatenate([near, np.maximum(enter, 0.0)], axis=1)
+        return near, np.concatenate([far, leave], axis=1)
+
+    def _box_entries(
+        self, origin: tuple[float, float], directions: Floats
+    ) -> tuple[Floats, Floats]:
+        """:meth:`_entries` of the boxes."""
         # Origin and directions in each box's frame: (boxes,) and (rays, boxes).
         ox = origin[0] - self.center[:, 0]
         oy = origin[1] - self.center[:, 1]

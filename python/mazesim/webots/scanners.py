@@ -73,7 +73,8 @@ class _Rays:
         x, y, heading = self._mount.world_pose(self._simulation.simulator.pose)
         directions = np.stack([np.cos(heading + angles), np.sin(heading + angles)], axis=1)
         rise = np.tan(np.asarray(elevations, dtype=float))[:, None] * np.ones(len(angles))
-        distance, _, _ = self._walls.walls().cast_sloped((x, y), directions, self.height(), rise)
+        walls = self._walls.with_solids()
+        distance, _, _ = walls.cast_sloped((x, y), directions, self.height(), rise)
         return np.asarray(distance, dtype=float)
 
 

@@ -32,7 +32,7 @@ from mazesim.webots.frames import Axes, axes_or_none, enu_to_nue, nue_to_enu
 from mazesim.webots.lights import irradiance
 from mazesim.webots.node_types import node_type
 from mazesim.webots.robot_frames import Footprint
-from mazesim.webots.walls_now import WallsNow
+from mazesim.webots.walls_now import OtherRobots, WallsNow
 
 if TYPE_CHECKING:
     from mazesim.webots.simulation import RobotSimulation
@@ -446,6 +446,7 @@ class TouchSensor(_ScalarSensor):
         self._mount = mount or DeviceMount()
         self._footprints = list(footprints)
         self._walls = WallsNow(simulation)
+        self._robots = OtherRobots(simulation)
 
     def _read(self) -> float:
         simulator = self._simulation.simulator
@@ -477,23 +478,8 @@ class TouchSensor(_ScalarSensor):
         return 1.0 if touching else 0.0
 
     def _robots_now(self) -> list[Footprint]:
-        """The other robots' bodies now, as discs: those of a simulator shared with them, else
-        the e-pucks of a world run; none in a run of one robot."""
-        simulation = self._simulation
-        others = getattr(simulation.simulator, "other_robots", None)
-        if others is not None:
-            return [Footprint(float(x), float(y), 0.0, None, float(r)) for x, y, r in others()]
-        if simulation.fleet is None:
-            return []
-        from mazesim.webots.shared_world import E_PUCK_BODY_RADIUS
-
-        robots = simulation.report.get("robots") or []
-        return [
-            Footprint(float(pose[0]), float(pose[1]), 0.0, None, E_PUCK_BODY_RADIUS)
-            for index, pose in enumerate(simulation.fleet.poses())
-            if pose is not None and index != simulation.robot_index
-            if index < len(robots) and robots[index].get("profile") is not None
-        ]
+        """The other robots' bodies now, as discs."""
+        return [Footprint(x, y, 0.0, None, radius) for x, y, radius in self._robots.now()]
 
     def _bodies_now(self) -> list[Footprint]:
         """The world's movable bodies where they are now."""
@@ -643,7 +629,7 @@ class RayDistanceSensor(DistanceSensor):
         x, y, heading = self._mount.world_pose(self._simulation.simulator.pose)
         turned = heading + self._headings
         flat = np.stack([np.cos(turned), np.sin(turned)], axis=1)
-        walls = self._walls.walls()
+        walls = self._walls.with_solids()
         height = self._mount.height_above_floor(self._simulation)
         rise = -np.tan(self._pitches)
         distance, wall, on_top = walls.cast_sloped((x, y), flat, height, rise)
@@ -655,7 +641,7 @@ class RayDistanceSensor(DistanceSensor):
             normals = walls.side_normals((x, y), flat, distance, wall)
             sides = slant * np.abs(np.sum(normals * flat, axis=1))
             incidence = np.where(on_top, incidence, sides)
-        with np.errstate(divide="ignore"):
+        with np.errstate(divide="ignore", invalid="ignore"):
             down = (self._pitches > 0.0) & (height > 0.0)
             floor = np.where(down, height / np.sin(self._pitches), np.inf)
         steep = self._pitches > DOWNWARD_PITCH

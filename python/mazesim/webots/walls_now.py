@@ -18,6 +18,8 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
+import numpy as np
+
 from mazesim.webots.line_of_sight import moved_walls
 from mazesim.webots.rays import FloorPaint, WallBoxes
 from mazesim.webots.solids import Held, held_by_line, world_objects
@@ -27,7 +29,7 @@ if TYPE_CHECKING:
     from mazesim.webots.lockstep import Fleet
     from mazesim.webots.simulation import RobotSimulation
 
-__all__ = ["WallsNow", "WorldWalls", "walls_seen"]
+__all__ = ["OtherRobots", "WallsNow", "WorldWalls", "walls_seen"]
 
 #: What a node that holds nothing holds.
 _NONE = Held()
@@ -69,6 +71,7 @@ class WallsNow:
         #: or the world's count of changes (a world run).
         self._seen: Any = None
         self._walls: WallBoxes | None = None
+        self._robots = OtherRobots(simulation)  # type: ignore[arg-type]
 
     def _import(self) -> None:
         """Takes the running world's import: the simulation's own in a run of one robot (a
@@ -138,6 +141,80 @@ class WallsNow:
             self._floor = FloorPaint(world)
             self._floor_seen = seen
         return self._floor
+
+    def with_solids(self) -> WallBoxes:
+        """The walls now and what else stands on the floor where it is now, as the rays of a
+        distance sensor, lidar or range finder the world adds meet them: the world's movable
+        bodies (their footprint, ``height`` and reflectance; a ball as an upright cylinder of
+        its radius, as high as it is wide) and the other robots of a world run (upright
+        cylinders of their body radius, as high as the E-puck's bounding cylinder, of
+        reflection factor :data:`~mazesim._core.ROBOT_REFLECTANCE`, as the E-puck's own rays
+        meet them)."""
+        from mazesim._core import ROBOT_REFLECTANCE
+        from mazesim.webots.camera import ROBOT_TOP
+
+        boxes, box_tops, discs, disc_tops = [], [], [], []
+        for (x, y, yaw), body in world_objects(self._simulation).drawn_bodies():
+            reflectance = float(body.get("reflectance", 1.0))
+            height = body.get("height")
+            if body.get("kind") == "circle":
+                radius = float(body["radius"])
+                discs.append((x, y, radius, reflectance))
+                disc_tops.append(float(height) if height else 2.0 * radius)
+            else:
+                width, depth = (float(v) for v in body["size"])
+                boxes.append((x, y, width, depth, yaw, reflectance))
+                box_tops.append(float(height) if height else min(width, depth))
+        for x, y, radius in self._robots.now():
+            discs.append((x, y, radius, ROBOT_REFLECTANCE))
+            disc_tops.append(ROBOT_TOP)
+        walls = self.walls()
+        if not boxes and not discs:
+            return walls
+        return walls.with_solids(
+            np.asarray(boxes), np.asarray(box_tops), np.asarray(discs), np.asarray(disc_tops)
+        )
+
+
+class OtherRobots:
+    """The other robots of a robot's world run where they are now, as its touch sensors, its
+    camera and the rays of the devices the world adds meet them.
+
+    Args:
+        simulation: The robot's simulation.
+    """
+
+    def __init__(self, simulation: RobotSimulation) -> None:
+        self._simulation = simulation
+        #: The shared simulator's ``other_robots`` call, False where the simulator holds this
+        #: robot alone; asked once (over a controller's pipe, each question is a round trip).
+        self._call: Any = None
+
+    def shared(self) -> bool:
+        """Whether the robot's simulator holds the other robots too (a
+        :class:`~mazesim.webots.shared_world.RobotView`, here or over a controller's pipe)."""
+        if self._call is None:
+            self._call = getattr(self._simulation.simulator, "other_robots", None) or False
+        return self._call is not False
+
+    def now(self) -> list[tuple[float, float, float]]:
+        """(x, y, body radius) of each other robot now: those of a simulator shared with them,
+        else each e-puck of the world run (a robot of a profile) of the E-puck's body radius;
+        none in a run of one robot."""
+        simulation = self._simulation
+        if self.shared():
+            return [(float(x), float(y), float(r)) for x, y, r in self._call()]
+        if simulation.fleet is None:
+            return []
+        from mazesim.webots.shared_world import E_PUCK_BODY_RADIUS
+
+        robots = simulation.report.get("robots") or []
+        return [
+            (float(pose[0]), float(pose[1]), E_PUCK_BODY_RADIUS)
+            for index, pose in enumerate(simulation.fleet.poses())
+            if pose is not None and index != simulation.robot_index
+            if index < len(robots) and robots[index].get("profile") is not None
+        ]
 
 
 @dataclass
