@@ -101,12 +101,16 @@ def supervisor_of(tmp_path: Path, noise: bool = False, seed: int = 0) -> control
     return controller.Supervisor()
 
 
-def supervisor_in(tmp_path: Path, text: str = WORLD, noise: bool = False) -> controller.Supervisor:
-    """The e-puck's supervisor in the world ``text``, as ``mazesim webots run`` prepares it
-    (the import report's ``path`` is the world file's)."""
+def supervisor_in(
+    tmp_path: Path, text: str = WORLD, noise: bool = False, robot: str | None = None
+) -> controller.Supervisor:
+    """The e-puck's supervisor in the world ``text`` (with ``robot``, the robot whose node
+    starts with the first line holding it), as ``mazesim webots run`` prepares it (the import
+    report's ``path`` is the world file's)."""
     path = tmp_path / "spawn.wbt"
     path.write_text(text)
-    world, report = import_wbt(str(path))
+    line = None if robot is None else text.count("\n", 0, text.index(robot)) + 1
+    world, report = import_wbt(str(path), robot_line=line)
     report = dict(report, path=str(path))
     scene = read_scene(text, report["robot_model"], report["robot_line"])
     prepare(world, seconds=60.0, noise=noise, seed=3, report=report, scene=scene)

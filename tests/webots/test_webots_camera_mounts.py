@@ -16,7 +16,6 @@ import pytest
 from PIL import Image
 
 from mazesim import World
-from mazesim.webots import controller, prepare
 from mazesim.webots.camera import (
     PLATE_COLOUR,
     ROBOT_COLOUR,
@@ -26,11 +25,11 @@ from mazesim.webots.camera import (
     placed_shape,
     render,
 )
-from mazesim.webots.importer import import_wbt
 from mazesim.webots.lockstep import run_world
 from mazesim.webots.rays import FloorPaint, WallBoxes
 from mazesim.webots.robot_frames import RobotShape, robot_shapes
 from mazesim.webots.scene import read_scene
+from supervised_world import supervisor_in
 
 pytestmark = pytest.mark.usefixtures("fresh_robot")
 
@@ -80,16 +79,7 @@ def watching_camera(tmp_path: Path) -> Any:
         + BOX.format(x=0.25, y=0.0, colour="0 1 0")
         + BOX.format(x=0.1, y=0.15, colour="0 0 1")
     )
-    path = tmp_path / "watch.wbt"
-    text = HEADER + boxes + WATCHER
-    path.write_text(text)
-    line = text.count("\n", 0, text.index("Robot {")) + 1
-    world, imported = import_wbt(str(path), robot_line=line)
-    report = dict(imported, path=str(path))
-    scene = read_scene(text, report["robot_model"], report["robot_line"])
-    prepare(world, seconds=10.0, noise=False, report=report, scene=scene)
-    controller.Robot.created = None
-    robot = controller.Supervisor()
+    robot = supervisor_in(tmp_path, HEADER + boxes + WATCHER, robot="Robot {")
     camera = robot.getDevice("camera")
     camera.enable(32)
     robot.step(32)

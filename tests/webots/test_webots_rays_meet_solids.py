@@ -12,6 +12,7 @@ import math
 import os
 import textwrap
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import pytest
@@ -173,3 +174,85 @@ def test_in_a_world_run_a_plain_robots_sensor_reads_an_e_puck_ahead_of_it(
     expected = 1000.0 * min(distance, 0.2) / 0.2
     assert json.loads(log.read_text()) == pytest.approx(expected, rel=0.02)
     assert os.path.exists(log)
+
+
+def looking_robot(tmp_path: Path, node: str, device: str, scenery: str = "") -> Any:
+    """The device ``eye`` of the only robot of a world, a plain Robot of fields ``node``
+    holding ``device`` among its children, beside ``scenery``, after one step with the device
+    enabled."""
+    text = (
+        "#VRML_SIM R2025a utf8\nWorldInfo { basicTimeStep 16 }\n"
+        "RectangleArena { floorSize 2 2 }\n"
+        f"{scenery}"
+        f'Robot {{ {node} controller "<extern>" supervisor TRUE children [ {device} ] }}\n'
+    )
+    robot = supervisor_in(tmp_path, text, robot="Robot {")
+    found = robot.getDevice("eye")
+    found.enable(16)
+    robot.step(16)
+    return found
+
+
+@pytest.mark.parametrize(
+    ("node", "floor"),
+    [
+        ("translation 0 0 0.1 rotation 0 1 0 1.5708", 0.1),
+        ("translation 0 0 0.15 rotation 0 1 0 1.5708", 0.15),
+        ("translation 0 0 0.05 rotation 0 1 0 0.7854", 0.05 * math.sqrt(2.0)),
+    ],
+)
+def test_a_sensor_of_a_robot_mazesim_does_not_move_sits_where_its_node_puts_it(
+    tmp_path: Path, node: str, floor: float
+) -> None:
+    # A Robot without physics stays where its node stands in Webots: turned a quarter turn
+    # about y, its x axis (the sensor's) points down at the floor from its height; turned an
+    # eighth, it meets the floor sqrt(2) times its height away.
+    eye = looking_robot(tmp_path, node, f'DistanceSensor {{ name "eye" {TABLE} }}')
+    assert eye.getValue() == pytest.approx(1000.0 * floor / 0.2, abs=1.0)
+
+
+def test_a_lidar_of_a_raised_robot_passes_over_a_box_lower_than_it(tmp_path: Path) -> None:
+    lidar = 'Lidar { name "eye" horizontalResolution 9 numberOfLayers 1 fieldOfView 0.8 }'
+    readings = []
+    for height in (0.02, 0.08):
+        where = tmp_path / str(height)
+        where.mkdir()
+        eye = looking_robot(where, f"translation 0 0 {height}", lidar, BOX.format(x=0.25))
+        readings.append(eye.getRangeImage()[4])
+    low, high = readings
+    assert low == pytest.approx(0.23, abs=0.02), "the 5 cm box's near side, 2 cm up"
+    assert high > 0.9, "8 cm up, over the box to the arena's wall"
+
+
+def test_in_a_world_run_a_sensor_above_an_e_pucks_body_reads_the_mast_it_carries(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    # The e-puck's body stops at 4.75 cm; a sensor 8 cm up passes over it, but meets a mast
+    # 2 cm wide on its turret, as it would in Webots and as the camera draws it.
+    readings = []
+    for mast in ("", MAST):
+        where = tmp_path / str(len(readings))
+        (where / "worlds").mkdir(parents=True)
+        (where / "controllers" / "eye").mkdir(parents=True)
+        (where / "controllers" / "eye" / "eye.py").write_text(WATCHER_CONTROLLER)
+        log = where / "eye.json"
+        monkeypatch.setenv("EYE_LOG", str(log))
+        world = where / "worlds" / "w.wbt"
+        e_puck = f'E-puck {{ translation 0.1 0 0 controller "<none>" turretSlot [ {mast} ] }}\n'
+        world.write_text(
+            "#VRML_SIM R2023b utf8\nWorldInfo { basicTimeStep 32 }\n"
+            "RectangleArena { floorSize 2 2 }\n"
+            + e_puck
+            + WATCHER.replace('type "infra-red" ', "").replace("0 0 0.035", "0 0 0.08")
+        )
+        run_world(str(world), seconds=0.2, noise=False)
+        readings.append(json.loads(log.read_text()))
+    bare, masted = readings
+    assert bare == pytest.approx(1000.0), "over the body, nothing within 0.2 m"
+    # The turret slot stands 9.5 mm behind the e-puck's centre: the mast's near side is
+    # 0.1 - 0.0095 - 0.01 m ahead.
+    assert masted == pytest.approx(1000.0 * 0.0805 / 0.2, rel=0.02), "the mast's near side"
+
+
+#: A mast 2 cm wide and 15 cm tall at the centre of an e-puck's turret.
+MAST = "Solid { translation 0 0 0.075 children [ Shape { geometry Box { size 0.02 0.02 0.15 } } ] }"

@@ -470,6 +470,22 @@ def placed_shape(shape: RobotShape, pose: Sequence[float]) -> Ball | Block:
     )  # fmt: skip
 
 
+def solids_now(simulation: RobotSimulation, robots: OtherRobots) -> list[Ball | Block]:
+    """What a camera of ``simulation``'s robot draws beside the walls, the floor and the other
+    robots' bodies, where it is now: the world's movable bodies (those a supervisor imported
+    too, not those it removed) and the visual shapes of the other robots of a world run (an
+    e-puck's that its drawn body holds left out)."""
+    from mazesim.webots.solids import world_objects
+
+    drawn = [drawn_body(pose, body) for pose, body in world_objects(simulation).drawn_bodies()]
+    drawn.extend(
+        placed_shape(shape, pose)
+        for shape, pose, e_puck in robots.shapes_now()
+        if not (e_puck and _inside_body(shape))
+    )
+    return drawn
+
+
 def _inside_body(shape: RobotShape) -> bool:
     """Whether an e-puck's visual shape lies inside the body the camera draws for it."""
     reach = shape.radius if shape.size is None else math.hypot(*shape.size) / 2.0
@@ -627,8 +643,6 @@ class Camera(_Sensor):
         self._rendered_floor: FloorPaint | None = None
         self._value = None
         self._robots = OtherRobots(simulation)
-        #: The world's robots (import report entries) with their visual shapes, once read.
-        self._others: list[tuple[Any, list[RobotShape]]] | None = None
         self._recogniser = recogniser_of(
             simulation.report, name, old_frame=simulation.scene.y_up_devices
         )
@@ -643,61 +657,9 @@ class Camera(_Sensor):
         self._walls = self._walls_now.walls()
         self._floor = self._walls_now.floor()
         x, y, yaw = (float(v) for v in self._simulation.simulator.pose)
-        fleet = self._fleet_now()
-        bodies = self._bodies_now() + self._robot_shapes_now(fleet)
+        bodies = solids_now(self._simulation, self._robots)
         self._sampled = ((x, y, yaw), self._other_robots(), bodies)
         return True
-
-    def _fleet_now(self) -> list[tuple[Any, Sequence[float]]]:
-        """Each other robot of a world run whose camera draws more than its simulator's
-        bodies (its visual shapes; every e-puck for a robot alone in its simulator, one that
-        is not an e-puck) with its pose now: (its entry of the import report's ``robots``,
-        pose); empty in a run of one robot."""
-        simulation = self._simulation
-        if simulation.fleet is None:
-            return []
-        if self._others is None:
-            from mazesim.webots.robot_frames import robot_shapes
-
-            shapes = robot_shapes(simulation.scene)
-            self._others = [
-                (robot, shapes.get(int(robot.get("line") or 0), []))
-                for robot in simulation.report.get("robots") or []
-            ]
-        alone = not self._robots.shared()
-        wanted = [
-            bool(shapes) or (alone and robot.get("profile")) for robot, shapes in self._others
-        ]
-        if not any(wanted):
-            return []
-        poses = simulation.fleet.poses()
-        return [
-            (self._others[index], pose)
-            for index, pose in enumerate(poses)
-            if index != simulation.robot_index and index < len(wanted) and wanted[index]
-            if pose is not None
-        ]
-
-    def _robot_shapes_now(self, fleet: list[tuple[Any, Sequence[float]]]) -> list[Ball | Block]:
-        """The visual shapes of the other robots of a world run, where their robots are now
-        (an e-puck's that its drawn body holds left out)."""
-        drawn: list[Ball | Block] = []
-        for (robot, shapes), pose in fleet:
-            e_puck = robot.get("profile") is not None
-            drawn.extend(
-                placed_shape(shape, pose)
-                for shape in shapes
-                if not (e_puck and _inside_body(shape))
-            )
-        return drawn
-
-    def _bodies_now(self) -> list[Ball | Block]:
-        """The world's movable bodies where they are now: those a supervisor imported too,
-        not those it removed."""
-        from mazesim.webots.solids import world_objects
-
-        drawn = world_objects(self._simulation).drawn_bodies()
-        return [drawn_body(pose, body) for pose, body in drawn]
 
     def _drawn(self) -> npt.NDArray[np.uint8] | None:
         """The image of the last sample, drawn at the first call that asks for it (a camera

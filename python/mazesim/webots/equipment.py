@@ -221,12 +221,7 @@ def extension_device(simulation: RobotSimulation, entry: Mapping[str, Any]) -> D
         # in a frame whose x is the robot's right when unturned (forward is its -z), which the
         # reading converts from the robot's frame: its forward is a quarter turn left of x.
         yaw += math.pi / 2
-    mount = DeviceMount(
-        entry.get("translation") or (0.0, 0.0, 0.0),
-        yaw,
-        float(entry.get("pitch", 0.0)),
-        entry.get("axes") if kind in _TILTED_KINDS else None,
-    )
+    mount = _device_mount(simulation, entry, yaw, kind in _TILTED_KINDS)
     table = _table(fields)
     e_puck_sensor = fields.get("model") == EPUCK_DISTANCE_SENSOR_MODEL
     default = EPUCK_PROXIMITY_APERTURE if e_puck_sensor else DISTANCE_SENSOR_APERTURE
@@ -325,6 +320,31 @@ def _camera_view(simulation: RobotSimulation, entry: Mapping[str, Any]) -> Camer
     if mount is None and simulation.scene.origin_height > 0.0:
         view = replace(view, z=view.z + simulation.scene.origin_height)
     return view
+
+
+def _device_mount(
+    simulation: RobotSimulation, entry: Mapping[str, Any], yaw: float, tilted: bool
+) -> DeviceMount:
+    """Where a device of the import report's ``entry`` sits on the run's robot, turned ``yaw``
+    (with its ``axes`` when ``tilted``: its reading depends on them). On a robot node mazesim
+    does not move, in the floor's frame below the node, raised, tilted and scaled as the node
+    is (a Webots robot without physics stays where its node stands), as the camera's view is."""
+    translation = entry.get("translation") or (0.0, 0.0, 0.0)
+    pitch = float(entry.get("pitch", 0.0))
+    axes = entry.get("axes") if tilted else None
+    still = _still_mount(simulation)
+    if still is None:
+        return DeviceMount(translation, yaw, pitch, axes)
+    ahead = still.direction(
+        (math.cos(pitch) * math.cos(yaw), math.cos(pitch) * math.sin(yaw), -math.sin(pitch))
+    )
+    return DeviceMount(
+        still.point(translation),
+        math.atan2(ahead[1], ahead[0]),
+        math.asin(max(-1.0, min(1.0, -ahead[2]))),
+        None if axes is None else [still.direction(axis) for axis in axes],
+        placed=True,
+    )
 
 
 def _still_mount(simulation: RobotSimulation) -> Mount | None:

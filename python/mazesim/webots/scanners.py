@@ -1,6 +1,7 @@
 """A lidar and a range finder a Webots world adds to a robot (a ``Lidar`` or ``RangeFinder``
 node in an extension slot, or among a plain robot's children), measured by casting rays against
-the walls as they stand, from where the device sits on the robot.
+the walls as they stand, the movable bodies and the other robots
+(:class:`~mazesim.webots.walls_now.ObstaclesNow`), from where the device sits on the robot.
 
 Webots renders both from OpenGL depth (reference manual, Lidar and RangeFinder). In mazesim's
 world each wall stands from the floor to its top (the import writes it; a wall of a mazesim
@@ -28,7 +29,7 @@ from mazesim.errors import _shown
 from mazesim.webots.devices import _print_error, device_side
 from mazesim.webots.inert import Lidar, LidarPoint, RangeFinder
 from mazesim.webots.sensors import DeviceMount
-from mazesim.webots.walls_now import WallsNow
+from mazesim.webots.walls_now import ObstaclesNow
 
 if TYPE_CHECKING:
     from mazesim.webots.simulation import RobotSimulation
@@ -52,15 +53,16 @@ def _range_image(image: object, size: int) -> list[float]:
 
 
 class _Rays:
-    """Horizontal distances to the walls along rays turned ``angles`` (rad) from a mount: the
-    walls a camera sees, the sensed-only ones (a Shape without a boundingObject) too, as
+    """Horizontal distances to what stands on the floor along rays turned ``angles`` (rad) from
+    a mount: the walls a camera sees, the sensed-only ones (a Shape without a boundingObject)
+    too, the movable bodies and the other robots, as
     Webots' lidar and range finder measure depth from a rendering of the scene (reference
     manual, Lidar: "from an OpenGL rendering, like the RangeFinder node does")."""
 
     def __init__(self, simulation: RobotSimulation, mount: DeviceMount) -> None:
         self._simulation = simulation
         self._mount = mount
-        self._walls = WallsNow(simulation, sensed=True)
+        self._obstacles = ObstaclesNow(simulation, sensed=True)
 
     def height(self) -> float:
         """The mount's height above the floor (:meth:`DeviceMount.height_above_floor`)."""
@@ -73,7 +75,7 @@ class _Rays:
         x, y, heading = self._mount.world_pose(self._simulation.simulator.pose)
         directions = np.stack([np.cos(heading + angles), np.sin(heading + angles)], axis=1)
         rise = np.tan(np.asarray(elevations, dtype=float))[:, None] * np.ones(len(angles))
-        walls = self._walls.with_solids()
+        walls = self._obstacles.boxes()
         distance, _, _ = walls.cast_sloped((x, y), directions, self.height(), rise)
         return np.asarray(distance, dtype=float)
 

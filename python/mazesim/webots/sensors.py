@@ -32,7 +32,7 @@ from mazesim.webots.frames import Axes, axes_or_none, enu_to_nue, nue_to_enu
 from mazesim.webots.lights import irradiance
 from mazesim.webots.node_types import node_type
 from mazesim.webots.robot_frames import Footprint
-from mazesim.webots.walls_now import OtherRobots, WallsNow
+from mazesim.webots.walls_now import ObstaclesNow, OtherRobots, WallsNow
 
 if TYPE_CHECKING:
     from mazesim.webots.simulation import RobotSimulation
@@ -78,7 +78,9 @@ LEVEL_TOLERANCE = 1e-6
 class DeviceMount:
     """Where a device sits on the robot: translation (m) and yaw (rad) in the robot's frame,
     and, where the import gives them, the device's x, y and z axes in that frame (the import
-    report's ``axes``: rows of three numbers)."""
+    report's ``axes``: rows of three numbers). ``placed``: the frame is the floor's below the
+    robot's node (a robot mazesim does not move, raised or tilted where its node stands), so
+    the translation's z is the device's height above the floor."""
 
     def __init__(
         self,
@@ -86,6 +88,7 @@ class DeviceMount:
         yaw: float = 0.0,
         pitch: float = 0.0,
         axes: Sequence[Sequence[float]] | None = None,
+        placed: bool = False,
     ) -> None:
         padded = [*(float(v) for v in translation), 0.0, 0.0, 0.0][:3]
         self.x, self.y, self.z = padded
@@ -93,11 +96,13 @@ class DeviceMount:
         #: How far the device's x axis points below the horizontal (rad).
         self.pitch = float(pitch)
         self.axes = axes_or_none(axes)
+        self.placed = placed
 
     def height_above_floor(self, simulation: RobotSimulation) -> float:
         """The device's height above the floor: its own above the robot's origin, plus how
-        high the origin rests (a plain Robot's on its wheels; an E-puck's is on the floor)."""
-        return self.z + simulation.scene.origin_height
+        high the origin rests (a plain Robot's on its wheels; an E-puck's is on the floor);
+        a placed mount's own."""
+        return self.z if self.placed else self.z + simulation.scene.origin_height
 
     def world_pose(self, pose: tuple[float, float, float]) -> tuple[float, float, float]:
         """The device's x, y, heading in the world for a robot pose."""
@@ -580,7 +585,8 @@ DISTANCE_SENSOR_APERTURE = 1.5708
 
 
 class RayDistanceSensor(DistanceSensor):
-    """A distance sensor the world adds: its rays from its mount against the walls and the
+    """A distance sensor the world adds: its rays from its mount against the walls, the movable
+    bodies and the other robots (:class:`~mazesim.webots.walls_now.ObstaclesNow`) and the
     floor (a :class:`DistanceSensor`, with the world's table, type, aperture, number of rays,
     ``gaussianWidth`` and, of an infra-red one, ``redColorSensitivity``: how much of the
     reflection factor ``f`` it applies, the distance ``d`` read as ``d + (d / f - d) *
@@ -608,7 +614,7 @@ class RayDistanceSensor(DistanceSensor):
         self._rays = DistanceRays.of(rays, aperture, gaussian_width, self._type)
         # Each ray's heading from the mount's and its pitch down, in the robot's frame.
         self._headings, self._pitches = _ray_bearings(mount, self._rays)
-        self._walls = WallsNow(simulation, sensed=self._type == self.INFRA_RED)
+        self._obstacles = ObstaclesNow(simulation, sensed=self._type == self.INFRA_RED)
         self._rng = noise_stream(simulation, name)
 
     def _read(self) -> float:
@@ -623,13 +629,13 @@ class RayDistanceSensor(DistanceSensor):
         goes ``distance / cos(pitch)`` to a wall ``distance`` ahead and meets the floor ``z /
         sin(pitch)`` away, and the nearer of the two is what it meets (Webots casts the ray in
         3D: a sensor tilted 15 degrees down from 1 cm up reads the floor 3.9 cm away). Beyond
-        :data:`DOWNWARD_PITCH` the floor is all it meets. A wall stands from the floor to its
-        top (the world's, else higher than any ray): a ray passes over a wall lower than it
-        where it crosses it, or falls onto its top."""
+        :data:`DOWNWARD_PITCH` the floor is all it meets. A wall (a body, a robot) stands from
+        the floor to its top (the world's, else higher than any ray): a ray passes over a wall
+        lower than it where it crosses it, or falls onto its top."""
         x, y, heading = self._mount.world_pose(self._simulation.simulator.pose)
         turned = heading + self._headings
         flat = np.stack([np.cos(turned), np.sin(turned)], axis=1)
-        walls = self._walls.with_solids()
+        walls = self._obstacles.boxes()
         height = self._mount.height_above_floor(self._simulation)
         rise = -np.tan(self._pitches)
         distance, wall, on_top = walls.cast_sloped((x, y), flat, height, rise)

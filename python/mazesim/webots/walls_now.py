@@ -27,9 +27,10 @@ from mazesim.webots.solids import Held, held_by_line, world_objects
 if TYPE_CHECKING:
     from mazesim._core import World
     from mazesim.webots.lockstep import Fleet
+    from mazesim.webots.robot_frames import RobotShape
     from mazesim.webots.simulation import RobotSimulation
 
-__all__ = ["OtherRobots", "WallsNow", "WorldWalls", "walls_seen"]
+__all__ = ["ObstaclesNow", "OtherRobots", "WallsNow", "WorldWalls", "walls_seen"]
 
 #: What a node that holds nothing holds.
 _NONE = Held()
@@ -71,7 +72,6 @@ class WallsNow:
         #: or the world's count of changes (a world run).
         self._seen: Any = None
         self._walls: WallBoxes | None = None
-        self._robots = OtherRobots(simulation)  # type: ignore[arg-type]
 
     def _import(self) -> None:
         """Takes the running world's import: the simulation's own in a run of one robot (a
@@ -142,39 +142,6 @@ class WallsNow:
             self._floor_seen = seen
         return self._floor
 
-    def with_solids(self) -> WallBoxes:
-        """The walls now and what else stands on the floor where it is now, as the rays of a
-        distance sensor, lidar or range finder the world adds meet them: the world's movable
-        bodies (their footprint, ``height`` and reflectance; a ball as an upright cylinder of
-        its radius, as high as it is wide) and the other robots of a world run (upright
-        cylinders of their body radius, as high as the E-puck's bounding cylinder, of
-        reflection factor :data:`~mazesim._core.ROBOT_REFLECTANCE`, as the E-puck's own rays
-        meet them)."""
-        from mazesim._core import ROBOT_REFLECTANCE
-        from mazesim.webots.camera import ROBOT_TOP
-
-        boxes, box_tops, discs, disc_tops = [], [], [], []
-        for (x, y, yaw), body in world_objects(self._simulation).drawn_bodies():
-            reflectance = float(body.get("reflectance", 1.0))
-            height = body.get("height")
-            if body.get("kind") == "circle":
-                radius = float(body["radius"])
-                discs.append((x, y, radius, reflectance))
-                disc_tops.append(float(height) if height else 2.0 * radius)
-            else:
-                width, depth = (float(v) for v in body["size"])
-                boxes.append((x, y, width, depth, yaw, reflectance))
-                box_tops.append(float(height) if height else min(width, depth))
-        for x, y, radius in self._robots.now():
-            discs.append((x, y, radius, ROBOT_REFLECTANCE))
-            disc_tops.append(ROBOT_TOP)
-        walls = self.walls()
-        if not boxes and not discs:
-            return walls
-        return walls.with_solids(
-            np.asarray(boxes), np.asarray(box_tops), np.asarray(discs), np.asarray(disc_tops)
-        )
-
 
 class OtherRobots:
     """The other robots of a robot's world run where they are now, as its touch sensors, its
@@ -189,6 +156,9 @@ class OtherRobots:
         #: The shared simulator's ``other_robots`` call, False where the simulator holds this
         #: robot alone; asked once (over a controller's pipe, each question is a round trip).
         self._call: Any = None
+        #: Each robot of the world run (its import report entry) with its visual shapes, once
+        #: read.
+        self._shapes: list[tuple[Mapping[str, Any], list[RobotShape]]] | None = None
 
     def shared(self) -> bool:
         """Whether the robot's simulator holds the other robots too (a
@@ -215,6 +185,83 @@ class OtherRobots:
             if pose is not None and index != simulation.robot_index
             if index < len(robots) and robots[index].get("profile") is not None
         ]
+
+    def shapes_now(self) -> list[tuple[RobotShape, tuple[float, float, float], bool]]:
+        """The visual shapes of the other robots of a world run (those of their nodes that are
+        primitives: :func:`~mazesim.webots.robot_frames.robot_shapes`), each with its robot's
+        pose now and whether that robot is an e-puck (a robot of a profile); empty in a run of
+        one robot."""
+        simulation = self._simulation
+        if simulation.fleet is None:
+            return []
+        if self._shapes is None:
+            from mazesim.webots.robot_frames import robot_shapes
+
+            by_line = robot_shapes(simulation.scene)
+            self._shapes = [
+                (robot, by_line.get(int(robot.get("line") or 0), []))
+                for robot in simulation.report.get("robots") or []
+            ]
+        if not any(shapes for _, shapes in self._shapes):
+            return []
+        found: list[tuple[RobotShape, tuple[float, float, float], bool]] = []
+        for index, pose in enumerate(simulation.fleet.poses()):
+            if index == simulation.robot_index or index >= len(self._shapes) or pose is None:
+                continue
+            robot, shapes = self._shapes[index]
+            placed = (float(pose[0]), float(pose[1]), float(pose[2]))
+            e_puck = robot.get("profile") is not None
+            found.extend((shape, placed, e_puck) for shape in shapes)
+        return found
+
+
+class ObstaclesNow:
+    """What the rays of a distance sensor, lidar or range finder the world adds to a robot meet
+    now: the walls (:class:`WallsNow`), the world's movable bodies and the other robots of a
+    world run (:class:`OtherRobots`), as Webots' rays meet every solid.
+
+    Args:
+        simulation: The robot's simulation.
+        sensed: Whether the walls include the sensed-only ones (infra-red rays, scanners).
+    """
+
+    def __init__(self, simulation: RobotSimulation, sensed: bool = False) -> None:
+        self._simulation = simulation
+        self._walls = WallsNow(simulation, sensed)
+        self._robots = OtherRobots(simulation)
+
+    def boxes(self) -> WallBoxes:
+        """The walls now and what else stands on the floor where it is now: what a camera draws
+        beside the walls (:func:`~mazesim.webots.camera.solids_now`: the world's movable
+        bodies, the other robots' visual shapes), each standing from the floor to its top (a
+        ball as the upright cylinder of its radius), and the other robots' bodies, upright
+        cylinders of their body radius as high as the E-puck's bounding cylinder, of reflection
+        factor :data:`~mazesim._core.ROBOT_REFLECTANCE` (as the E-puck's own rays meet
+        them)."""
+        from mazesim._core import ROBOT_REFLECTANCE
+        from mazesim.webots.camera import ROBOT_TOP, Ball, solids_now
+
+        boxes, box_tops, discs, disc_tops = [], [], [], []
+        for solid in solids_now(self._simulation, self._robots):
+            if isinstance(solid, Ball):
+                discs.append((solid.x, solid.y, solid.radius, solid.reflectance))
+                disc_tops.append((solid.radius if solid.z is None else solid.z) + solid.radius)
+            elif solid.size is None:
+                discs.append((solid.x, solid.y, solid.radius, solid.reflectance))
+                disc_tops.append(solid.height)
+            else:
+                width, depth = solid.size
+                boxes.append((solid.x, solid.y, width, depth, solid.yaw, solid.reflectance))
+                box_tops.append(solid.height)
+        for x, y, radius in self._robots.now():
+            discs.append((x, y, radius, ROBOT_REFLECTANCE))
+            disc_tops.append(ROBOT_TOP)
+        walls = self._walls.walls()
+        if not boxes and not discs:
+            return walls
+        return walls.with_solids(
+            np.asarray(boxes), np.asarray(box_tops), np.asarray(discs), np.asarray(disc_tops)
+        )
 
 
 @dataclass
