@@ -256,3 +256,18 @@ def test_in_a_world_run_a_sensor_above_an_e_pucks_body_reads_the_mast_it_carries
 
 #: A mast 2 cm wide and 15 cm tall at the centre of an e-puck's turret.
 MAST = "Solid { translation 0 0 0.075 children [ Shape { geometry Box { size 0.02 0.02 0.15 } } ] }"
+
+
+@pytest.mark.parametrize(
+    ("node", "expected"),
+    [
+        ("translation 0.2 0.1 0.3", [0.25, 0.1, 0.3]),
+        ("translation 0.2 0.1 0.3 rotation 0 1 0 1.5708", [0.2, 0.1, 0.25]),
+    ],
+)
+def test_a_gps_of_a_robot_mazesim_does_not_move_reads_where_its_node_puts_it(
+    tmp_path: Path, node: str, expected: list[float]
+) -> None:
+    # 5 cm along the robot's x axis: ahead of a level robot, below one turned to look down.
+    gps = looking_robot(tmp_path, node, 'GPS { name "eye" translation 0.05 0 0 }')
+    assert gps.getValues() == pytest.approx(expected, abs=1e-4)
