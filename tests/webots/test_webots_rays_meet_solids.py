@@ -227,10 +227,11 @@ def test_a_lidar_of_a_raised_robot_passes_over_a_box_lower_than_it(tmp_path: Pat
 def test_in_a_world_run_a_sensor_above_an_e_pucks_body_reads_the_mast_it_carries(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    # The e-puck's body stops at 4.75 cm; a sensor 8 cm up passes over it, but meets a mast
-    # 2 cm wide on its turret, as it would in Webots and as the camera draws it.
+    # The e-puck's body stops at 4.75 cm; an infra-red sensor 8 cm up passes over it, but
+    # meets a mast 2 cm wide on its turret, as the camera draws it; a generic one passes
+    # through the mast, a visual shape (as it passes through a sensed-only wall).
     readings = []
-    for mast in ("", MAST):
+    for mast, kind in (("", "infra-red"), (MAST, "infra-red"), (MAST, "generic")):
         where = tmp_path / str(len(readings))
         (where / "worlds").mkdir(parents=True)
         (where / "controllers" / "eye").mkdir(parents=True)
@@ -243,12 +244,13 @@ def test_in_a_world_run_a_sensor_above_an_e_pucks_body_reads_the_mast_it_carries
             "#VRML_SIM R2023b utf8\nWorldInfo { basicTimeStep 32 }\n"
             "RectangleArena { floorSize 2 2 }\n"
             + e_puck
-            + WATCHER.replace('type "infra-red" ', "").replace("0 0 0.035", "0 0 0.08")
+            + WATCHER.replace("infra-red", kind).replace("0 0 0.035", "0 0 0.08")
         )
         run_world(str(world), seconds=0.2, noise=False)
         readings.append(json.loads(log.read_text()))
-    bare, masted = readings
+    bare, masted, through = readings
     assert bare == pytest.approx(1000.0), "over the body, nothing within 0.2 m"
+    assert through == pytest.approx(1000.0), "a generic sensor: no visual shapes"
     # The turret slot stands 9.5 mm behind the e-puck's centre: the mast's near side is
     # 0.1 - 0.0095 - 0.01 m ahead.
     assert masted == pytest.approx(1000.0 * 0.0805 / 0.2, rel=0.02), "the mast's near side"

@@ -470,14 +470,18 @@ def placed_shape(shape: RobotShape, pose: Sequence[float]) -> Ball | Block:
     )  # fmt: skip
 
 
-def solids_now(simulation: RobotSimulation, robots: OtherRobots) -> list[Ball | Block]:
+def solids_now(
+    simulation: RobotSimulation, robots: OtherRobots, visual: bool = True
+) -> list[Ball | Block]:
     """What a camera of ``simulation``'s robot draws beside the walls, the floor and the other
     robots' bodies, where it is now: the world's movable bodies (those a supervisor imported
-    too, not those it removed) and the visual shapes of the other robots of a world run (an
-    e-puck's that its drawn body holds left out)."""
+    too, not those it removed) and, with ``visual``, the visual shapes of the other robots of
+    a world run (an e-puck's that its drawn body holds left out)."""
     from mazesim.webots.solids import world_objects
 
     drawn = [drawn_body(pose, body) for pose, body in world_objects(simulation).drawn_bodies()]
+    if not visual:
+        return drawn
     drawn.extend(
         placed_shape(shape, pose)
         for shape, pose, e_puck in robots.shapes_now()

@@ -227,13 +227,15 @@ class ObstaclesNow:
 
     def __init__(self, simulation: RobotSimulation, sensed: bool = False) -> None:
         self._simulation = simulation
+        self._sensed = sensed
         self._walls = WallsNow(simulation, sensed)
         self._robots = OtherRobots(simulation)
 
     def boxes(self) -> WallBoxes:
         """The walls now and what else stands on the floor where it is now: what a camera draws
         beside the walls (:func:`~mazesim.webots.camera.solids_now`: the world's movable
-        bodies, the other robots' visual shapes), each standing from the floor to its top (a
+        bodies; the other robots' visual shapes where the sensed-only walls are met too, as
+        they are of the same kind), each standing from the floor to its top (a
         ball as the upright cylinder of its radius), and the other robots' bodies, upright
         cylinders of their body radius as high as the E-puck's bounding cylinder, of reflection
         factor :data:`~mazesim._core.ROBOT_REFLECTANCE` (as the E-puck's own rays meet
@@ -242,7 +244,7 @@ class ObstaclesNow:
         from mazesim.webots.camera import ROBOT_TOP, Ball, solids_now
 
         boxes, box_tops, discs, disc_tops = [], [], [], []
-        for solid in solids_now(self._simulation, self._robots):
+        for solid in solids_now(self._simulation, self._robots, visual=self._sensed):
             if isinstance(solid, Ball):
                 discs.append((solid.x, solid.y, solid.radius, solid.reflectance))
                 disc_tops.append((solid.radius if solid.z is None else solid.z) + solid.radius)
