@@ -62,7 +62,8 @@ DEFAULT_FOV = 0.84
 #: The camera's position on the robot (m): ahead of the wheel axle, above the floor.
 CAMERA_X = 0.03
 CAMERA_Z = 0.028
-#: Wall height (m) when the world gives none: the e-puck worlds' usual walls.
+#: Wall height (m) the camera draws a wall the world gives no top (a mazesim world's without
+#: ``height``): the e-puck worlds' usual walls.
 WALL_HEIGHT = 0.1
 #: Grey of a wall of reflectance 1 (walls are drawn a little darker than a white floor).
 WALL_SHADE = 0.8
@@ -213,11 +214,13 @@ def render(
     ox, oy = _lens(view, pose)
     with np.errstate(divide="ignore", invalid="ignore"):
         floor_t = np.where(rise < 0.0, view.z / -rise, np.inf)
+    # Each wall stands from the floor to its top (``view.wall_height`` where the world gives
+    # none): a ray passes over a lower one or lands on its top.
     if view.pitch == 0.0 and view.axes is None:
-        # A level camera: every row of a column casts the same ray along the floor.
-        column_t, column_wall = walls.cast_walls((ox, oy), np.stack([dx[0], dy[0]], axis=1))
-        wall_t = np.broadcast_to(column_t, rise.shape)
-        wall = np.broadcast_to(column_wall, rise.shape)
+        # A level camera: every row of a column casts along the same line across the floor.
+        columns = np.stack([dx[0], dy[0]], axis=1)
+        rows = np.broadcast_to(rise[:, :1], rise.shape)
+        wall_t, wall, _ = walls.cast_sloped((ox, oy), columns, view.z, rows, view.wall_height)
     else:
         # Each pixel casts its own ray; one that meets the floor nearer than the nearest wall
         # is, seen from above, sees the floor whatever wall it would meet: it casts none.
@@ -227,11 +230,10 @@ def render(
         wall = np.full(rise.shape, -1, dtype=np.intp)
         if casts.any():
             directions = np.stack([dx[casts], dy[casts]], axis=1)
-            wall_t[casts], wall[casts] = walls.cast_walls((ox, oy), directions)
+            wall_t[casts], wall[casts], _ = walls.cast_sloped(
+                (ox, oy), directions, view.z, rise[casts], view.wall_height
+            )
     sees_wall = np.isfinite(wall_t) & (wall_t <= floor_t)
-    # A ray that meets no wall (an open side of the world) has no height to compare.
-    hit_height = view.z + np.where(np.isfinite(wall_t), wall_t, 0.0) * rise
-    sees_wall &= hit_height <= view.wall_height
     robot_t = _robot_hits(view, (ox, oy), dx, dy, rise, robots)
     sees_robot = np.isfinite(robot_t) & (robot_t <= floor_t)
     sees_robot &= ~(sees_wall & (wall_t < robot_t))

@@ -218,13 +218,17 @@ class WallBoxes:
         camera's pixels do. A ray meets a wall's side where it is no higher than the wall's top
         there, falls onto its top, or passes over it; a wall the world gives no top stands
         ``untopped`` high. Each line weighs the walls it crosses nearest first, until no ray
-        can meet a nearer one.
+        can meet a nearer one; rows of slopes that every line shares (a level camera's, a
+        lidar's layers) are weighed once for all rows (:meth:`_cast_rows`).
 
         Returns:
             Each ray's parameter at the first wall met (``inf``: none), that wall's index (-1)
             and whether it met the wall's top, shaped as ``slopes``.
         """
         grid = np.atleast_2d(slopes)
+        shared = grid.strides[1] == 0 or bool(np.all(grid == grid[:, :1]))  # a broadcast row
+        if np.ndim(slopes) == 2 and grid.shape[0] > 1 and shared:
+            return self._cast_rows(origin, directions, height, grid[:, 0], untopped)
         distance = np.full(grid.shape, np.inf)
         wall = np.full(grid.shape, -1, dtype=np.intp)
         on_top = np.zeros(grid.shape, dtype=bool)
@@ -254,13 +258,117 @@ class WallBoxes:
                 onto = ~side & (grid < 0.0) & (grid <= top_most)
                 with np.errstate(divide="ignore", invalid="ignore"):
                     t = np.where(side, entry, rise / grid)
-                nearer = (side | onto) & (t < distance)
+                # A line past its last wall weighs a wall it misses (entry inf): no hit.
+                nearer = (side | onto) & (t < distance) & np.isfinite(entry)
                 distance = np.where(nearer, t, distance)
                 wall = np.where(nearer, index, wall)
                 on_top = np.where(nearer, onto, on_top)
                 ahead[lines, index] = np.inf
         shape = np.shape(slopes)
         return distance.reshape(shape), wall.reshape(shape), on_top.reshape(shape)
+
+    def _cast_rows(
+        self,
+        origin: tuple[float, float],
+        directions: Floats,
+        height: float,
+        slopes: Floats,
+        untopped: float,
+    ) -> tuple[Floats, npt.NDArray[np.intp], npt.NDArray[np.bool_]]:
+        """:meth:`cast_sloped` of rows of rays that every line shares: every line across the
+        floor (``directions``, (W, 2), the columns) carries a ray of each of ``slopes`` ((H,),
+        the rows), so each line weighs its walls nearest first once for all its rows.
+
+        Along a line, the walls met nearest first each have the steepest slope of a ray that
+        meets them (at their side's entry for a wall above the rays' start, at their top's
+        exit for one below it); a row meets the first wall whose slope is at least its own,
+        which a sorted search over the running maximum of those slopes finds for every row at
+        once. A line stops weighing when the rows still unmet can reach no farther wall: the
+        falling ones meet the floor first (a falling ray meets nothing beyond the floor), the
+        rising ones clear the tallest top.
+
+        Returns:
+            As :meth:`cast_sloped`, each shaped (H, W).
+        """
+        rows = np.asarray(slopes, dtype=np.float64).reshape(-1)
+        count = directions.shape[0]
+        shape = (rows.shape[0], count)
+        if self.top.shape[0] == 0 or count == 0 or rows.shape[0] == 0:
+            return _unmet(shape)
+        near, far = self._entries(origin, directions)
+        ahead = np.where(near <= far, near, np.inf)
+        tops = np.where(np.isfinite(self.top), self.top, untopped)
+        tallest = float(np.max(tops))
+        # Whether a falling row may land on the top of a wall lower than the rays' start.
+        landing = bool(np.any(tops < height))
+        ascending = np.sort(rows)
+        # The steepest slope met so far along each line, and each pass's wall, entry and slope.
+        best = np.full(count, -np.inf)
+        passes: list[tuple[npt.NDArray[np.intp], Floats, Floats, Floats]] = []
+        lines = np.arange(count)
+        # The lines that may meet a wall yet: a line's nearest wall left beyond its reach
+        # stays beyond it (its unmet rows change only when it meets a wall).
+        open_lines = np.ones(count, dtype=bool)
+        while True:
+            candidates = lines[open_lines]
+            if candidates.shape[0] == 0:
+                break
+            index = np.argmin(ahead[candidates], axis=1)
+            entry = ahead[candidates, index]
+            reach = _reach(best[candidates], ascending, height, tallest, landing)
+            keep = np.isfinite(entry) & (entry <= reach)
+            open_lines[candidates[~keep]] = False
+            live, index, entry = candidates[keep], index[keep], entry[keep]
+            if live.shape[0] == 0:
+                break
+            rise = tops[index] - height
+            with np.errstate(divide="ignore", invalid="ignore"):
+                steepest = np.where(rise >= 0.0, rise / entry, rise / far[live, index])
+            slope = np.full(count, -np.inf)
+            slope[live] = np.where(np.isnan(steepest), -np.inf, steepest)
+            walls_of = np.zeros(count, dtype=np.intp)
+            walls_of[live] = index
+            entries = np.full(count, np.inf)
+            entries[live] = entry
+            exits = np.full(count, -np.inf)
+            exits[live] = far[live, index]
+            passes.append((walls_of, entries, slope, exits))
+            best = np.maximum(best, slope)
+            ahead[live, index] = np.inf
+        if not passes:
+            return _unmet(shape)
+        # How many rows (ascending) each pass's running slope reaches: a row is its first
+        # reaching pass's (later passes drawn first, each over the rows it reaches).
+        running = np.maximum.accumulate(np.stack([p[2] for p in passes]), axis=0)
+        reached = np.searchsorted(ascending, running, side="right")
+        place = np.searchsorted(ascending, rows, side="left")[:, None]
+        distance = np.full(shape, np.inf)
+        wall = np.full(shape, -1, dtype=np.intp)
+        for (walls_of, entries, _, _), count_reached in zip(passes[::-1], reached[::-1]):
+            hit = place < count_reached
+            np.copyto(distance, entries, where=hit)
+            np.copyto(wall, walls_of, where=hit)
+        if not landing:
+            # Every wall's top is at or above the rays' start: each is met at its side.
+            return distance, wall, np.zeros(shape, dtype=bool)
+        slope = rows[:, None]
+        rise = np.where(wall >= 0, tops[np.maximum(wall, 0)], np.inf) - height
+        with np.errstate(divide="ignore", invalid="ignore"):
+            on_top = (wall >= 0) & (slope * distance > rise)
+            distance = np.where(on_top, rise / slope, distance)
+        if on_top.any():
+            # A row that lands on a wall's top may meet a wall entered before it lands.
+            for walls_of, entries, _, exits in passes:
+                rise = tops[walls_of] - height
+                with np.errstate(divide="ignore", invalid="ignore"):
+                    side = slope * entries <= rise
+                    onto = ~side & (slope < 0.0) & (slope * exits <= rise)
+                    t = np.where(side, entries, np.where(onto, rise / slope, np.inf))
+                nearer = on_top & (t < distance)
+                distance = np.where(nearer, t, distance)
+                wall = np.where(nearer, walls_of, wall)
+                on_top = np.where(nearer, onto, on_top)
+        return distance, wall, on_top
 
     def _entries(self, origin: tuple[float, float], directions: Floats) -> tuple[Floats, Floats]:
         """Where each ray (rows) enters and leaves each box, then each cylinder (columns), as
@@ -300,6 +408,35 @@ class WallBoxes:
             near_x, far_x = _slab(local_ox, local_dx, self.half[:, 0])
             near_y, far_y = _slab(local_oy, local_dy, self.half[:, 1])
         return np.maximum(np.maximum(near_x, near_y), 0.0), np.minimum(far_x, far_y)
+
+
+def _unmet(shape: tuple[int, int]) -> tuple[Floats, npt.NDArray[np.intp], npt.NDArray[np.bool_]]:
+    """What :meth:`WallBoxes._cast_rows` returns where no ray meets a wall."""
+    return np.full(shape, np.inf), np.full(shape, -1, dtype=np.intp), np.zeros(shape, bool)
+
+
+def _reach(best: Floats, ascending: Floats, height: float, tallest: float, landing: bool) -> Floats:
+    """How far along its line each line of :meth:`WallBoxes._cast_rows` may still meet a wall:
+    its unmet rows are those of slopes above ``best``; a falling one meets the floor
+    ``height / -slope`` away, a rising one clears the ``tallest`` top; -inf when every row is
+    met. With ``landing`` (a wall lower than the rays' start), every falling row counts as
+    unmet: one that lands on a top may yet meet a wall entered before it lands."""
+    rows = ascending.shape[0]
+    first_unmet = np.searchsorted(ascending, best, side="right")
+    level_from = int(np.searchsorted(ascending, 0.0, side="left"))
+    # The unmet falling row nearest level, and the unmet rising (or level) row nearest it.
+    falls = (first_unmet < level_from) | (landing and level_from > 0)
+    falling = ascending[max(level_from - 1, 0)]
+    rising_at = np.maximum(first_unmet, level_from)
+    rises = rising_at < rows
+    rising = ascending[np.minimum(rising_at, rows - 1)]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        to_floor = np.where(falls, height / -falling, -np.inf)
+        if tallest < height:
+            to_clear = np.full(best.shape, -np.inf)
+        else:
+            to_clear = np.where(rising > 0.0, (tallest - height) / rising, np.inf)
+    return np.asarray(np.maximum(to_floor, np.where(rises, to_clear, -np.inf)))
 
 
 def _slab(origin: Floats, direction: Floats, half: Floats) -> tuple[Floats, Floats]:
