@@ -219,8 +219,7 @@ def render(
     if view.pitch == 0.0 and view.axes is None:
         # A level camera: every row of a column casts along the same line across the floor.
         columns = np.stack([dx[0], dy[0]], axis=1)
-        rows = np.broadcast_to(rise[:, :1], rise.shape)
-        wall_t, wall, _ = walls.cast_sloped((ox, oy), columns, view.z, rows, view.wall_height)
+        wall_t, wall, _ = walls.cast_sloped((ox, oy), columns, view.z, rise, view.wall_height)
     else:
         # Each pixel casts its own ray; one that meets the floor nearer than the nearest wall
         # is, seen from above, sees the floor whatever wall it would meet: it casts none.
@@ -296,11 +295,18 @@ def _rays(
         dx = cos_r * ray[..., 0] - sin_r * ray[..., 1]
         dy = sin_r * ray[..., 0] + cos_r * ray[..., 1]
         return dx, dy, np.ascontiguousarray(ray[..., 2])
+    cos_y, sin_y = math.cos(yaw + view.yaw), math.sin(yaw + view.yaw)
+    if view.pitch == 0.0:
+        # A level camera: a column's rays run along one line, a row's rise alike; read-only
+        # views of one column and one row, not arrays of every pixel.
+        shape = (view.height, view.width)
+        dx = np.broadcast_to(cos_y - sin_y * left, shape)
+        dy = np.broadcast_to(sin_y + cos_y * left, shape)
+        return dx, dy, np.broadcast_to(up[:, None], shape)
     # Pitch (down positive) turns each ray about the camera's left axis.
     cos_p, sin_p = math.cos(view.pitch), math.sin(view.pitch)
     forward = cos_p + sin_p * up[:, None] * np.ones_like(left)[None, :]
     rise = up[:, None] * cos_p - sin_p * np.ones_like(left)[None, :]
-    cos_y, sin_y = math.cos(yaw + view.yaw), math.sin(yaw + view.yaw)
     dx = cos_y * forward - sin_y * left[None, :]
     dy = sin_y * forward + cos_y * left[None, :]
     return dx, dy, rise
