@@ -178,12 +178,28 @@ def _lost(failure: BaseException) -> LinkLost:
             "the controller closed its file descriptor (os.close or os.closerange): close only "
             "the files it opened"
         )
+        # The pipe's object would close that descriptor again when it is collected (its
+        # number may name a file the controller opened since; it is left alone) and print
+        # the failure as an ignored exception: that one is said once, above.
+        sys.unraisablehook = _closed_pipe_quiet(sys.unraisablehook)
     elif isinstance(failure, (EOFError, BrokenPipeError, ConnectionError)):
         why = "the world's process closed it"
     else:
         why = f"{type(failure).__name__}: {failure}"
     _link["lost"] = f"the controller's link to the world's process was lost: {why}"
     return LinkLost(_link["lost"])
+
+
+def _closed_pipe_quiet(hook: Any) -> Any:
+    """``hook`` (an unraisable-exception hook) but for the bad file descriptor of a pipe the
+    controller closed, which a pipe's collection raises and nothing can catch."""
+
+    def quiet(unraisable: Any) -> None:
+        failure = unraisable.exc_value
+        if not (isinstance(failure, OSError) and failure.errno == errno.EBADF):
+            hook(unraisable)
+
+    return quiet
 
 
 class Remote:
