@@ -10,6 +10,10 @@ the world's process holds them, and each step's answer says how many times the w
 changed (``wall_changes``), so a robot asks for the changed world only after a change. The
 world's process reads its own walls the same way (:class:`WorldWalls`: what stops the radio's
 infra-red packets, what a recorded run draws), from the same count.
+
+What else a robot's casts meet: the other robots of a world run (:class:`OtherRobots`, also
+what its touch sensors touch and its camera draws) and, for the rays of the devices the world
+adds, the movable bodies too (:class:`ObstaclesNow`).
 """
 
 from __future__ import annotations
@@ -235,11 +239,11 @@ class ObstaclesNow:
         """The walls now and what else stands on the floor where it is now: what a camera draws
         beside the walls (:func:`~mazesim.webots.camera.solids_now`: the world's movable
         bodies; the other robots' visual shapes where the sensed-only walls are met too, as
-        they are of the same kind), each standing from the floor to its top (a
-        ball as the upright cylinder of its radius), and the other robots' bodies, upright
-        cylinders of their body radius as high as the E-puck's bounding cylinder, of reflection
-        factor :data:`~mazesim._core.ROBOT_REFLECTANCE` (as the E-puck's own rays meet
-        them)."""
+        they are of the same kind), each standing from the floor to its top (a ball as the
+        upright cylinder of its radius, a shape above the floor as if it reached down to it),
+        and the other robots' bodies, upright cylinders of their body radius as high as the
+        E-puck's bounding cylinder, of reflection factor
+        :data:`~mazesim._core.ROBOT_REFLECTANCE` (as the E-puck's own rays meet them)."""
         from mazesim._core import ROBOT_REFLECTANCE
         from mazesim.webots.camera import ROBOT_TOP, Ball, solids_now
 
