@@ -20,6 +20,7 @@ import pytest
 from mazesim._core import ROBOT_REFLECTANCE
 from mazesim.webots.lockstep import run_world
 from mazesim.webots.rays import WallBoxes
+from mazesim.webots.walls_now import OtherRobots
 from supervised_world import slot_readings, supervisor_in
 
 pytestmark = pytest.mark.usefixtures("fresh_robot")
@@ -273,3 +274,28 @@ def test_a_gps_of_a_robot_mazesim_does_not_move_reads_where_its_node_puts_it(
     # 5 cm along the robot's x axis: ahead of a level robot, below one turned to look down.
     gps = looking_robot(tmp_path, node, 'GPS { name "eye" translation 0.05 0 0 }')
     assert gps.getValues() == pytest.approx(expected, abs=1e-4)
+
+
+def test_the_devices_of_a_robot_share_one_question_a_step_for_the_other_robots() -> None:
+    # Over a controller's pipe each question is a round trip: a robot's touch sensors, camera
+    # and added sensors ask for the other robots' places once a step between them.
+    asked = []
+
+    class Shared:
+        def other_robots(self) -> list[tuple[float, float, float]]:
+            asked.append(1)
+            return [(0.1, 0.2, 0.037)]
+
+    class Simulation:
+        simulator = Shared()
+        fleet = None
+        steps = 0
+
+    simulation = Simulation()
+    robots = OtherRobots.of(simulation)  # type: ignore[arg-type]
+    assert OtherRobots.of(simulation) is robots  # type: ignore[arg-type]
+    assert robots.now() == robots.now() == [(0.1, 0.2, 0.037)]
+    assert len(asked) == 1
+    simulation.steps = 1
+    robots.now()
+    assert len(asked) == 2

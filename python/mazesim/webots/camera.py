@@ -654,7 +654,7 @@ class Camera(_Sensor):
         self._rendered_walls: WallBoxes | None = None
         self._rendered_floor: FloorPaint | None = None
         self._value = None
-        self._robots = OtherRobots(simulation)
+        self._robots = OtherRobots.of(simulation)
         self._recogniser = recogniser_of(
             simulation.report, name, old_frame=simulation.scene.y_up_devices
         )

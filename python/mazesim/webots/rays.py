@@ -226,9 +226,10 @@ class WallBoxes:
             and whether it met the wall's top, shaped as ``slopes``.
         """
         grid = np.atleast_2d(slopes)
-        shared = grid.strides[1] == 0 or bool(np.all(grid == grid[:, :1]))  # a broadcast row
-        if np.ndim(slopes) == 2 and grid.shape[0] > 1 and shared:
-            return self._cast_rows(origin, directions, height, grid[:, 0], untopped)
+        if np.ndim(slopes) == 2 and grid.shape[0] > 1:
+            # A broadcast row (stride 0) shares its slopes without a look at them.
+            if grid.strides[1] == 0 or bool(np.all(grid == grid[:, :1])):
+                return self._cast_rows(origin, directions, height, grid[:, 0], untopped)
         distance = np.full(grid.shape, np.inf)
         wall = np.full(grid.shape, -1, dtype=np.intp)
         on_top = np.zeros(grid.shape, dtype=bool)

@@ -451,7 +451,7 @@ class TouchSensor(_ScalarSensor):
         self._mount = mount or DeviceMount()
         self._footprints = list(footprints)
         self._walls = WallsNow(simulation)
-        self._robots = OtherRobots(simulation)
+        self._robots = OtherRobots.of(simulation)
 
     def _read(self) -> float:
         simulator = self._simulation.simulator

@@ -18,6 +18,7 @@ adds, the movable bodies too (:class:`ObstaclesNow`).
 
 from __future__ import annotations
 
+import weakref
 from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
@@ -149,14 +150,27 @@ class WallsNow:
 
 class OtherRobots:
     """The other robots of a robot's world run where they are now, as its touch sensors, its
-    camera and the rays of the devices the world adds meet them.
+    camera and the rays of the devices the world adds meet them: one per simulation
+    (:meth:`of`), which asks for their places once a step.
 
     Args:
         simulation: The robot's simulation.
     """
 
+    _made: weakref.WeakKeyDictionary[Any, OtherRobots] = weakref.WeakKeyDictionary()
+
+    @classmethod
+    def of(cls, simulation: RobotSimulation) -> OtherRobots:
+        """The simulation's one :class:`OtherRobots` (its devices share it)."""
+        made = cls._made.get(simulation)
+        if made is None:
+            made = cls._made[simulation] = cls(simulation)
+        return made
+
     def __init__(self, simulation: RobotSimulation) -> None:
         self._simulation = simulation
+        #: The step the other robots' places were last asked at, and those places.
+        self._asked: tuple[int, list[tuple[float, float, float]]] | None = None
         #: The shared simulator's ``other_robots`` call, False where the simulator holds this
         #: robot alone; asked once (over a controller's pipe, each question is a round trip).
         self._call: Any = None
@@ -177,7 +191,12 @@ class OtherRobots:
         none in a run of one robot."""
         simulation = self._simulation
         if self.shared():
-            return [(float(x), float(y), float(r)) for x, y, r in self._call()]
+            # Over a controller's pipe each question is a round trip: asked once a step.
+            step = int(simulation.steps)
+            if self._asked is None or self._asked[0] != step:
+                places = [(float(x), float(y), float(r)) for x, y, r in self._call()]
+                self._asked = (step, places)
+            return list(self._asked[1])
         if simulation.fleet is None:
             return []
         from mazesim.webots.shared_world import E_PUCK_BODY_RADIUS
@@ -233,7 +252,7 @@ class ObstaclesNow:
         self._simulation = simulation
         self._sensed = sensed
         self._walls = WallsNow(simulation, sensed)
-        self._robots = OtherRobots(simulation)
+        self._robots = OtherRobots.of(simulation)
 
     def boxes(self) -> WallBoxes:
         """The walls now and what else stands on the floor where it is now: what a camera draws
