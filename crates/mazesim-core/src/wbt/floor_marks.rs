@@ -6,8 +6,8 @@
 //! `Mesh` (a Wavefront `.obj` file) is such a shape.
 //!
 //! Shapes whose top is below [`FLOOR_MARK_HEIGHT`] (the proximity rays' lowest point) become
-//! floor paint of their colour's reflection factor, as seen from above (later shapes over
-//! earlier ones), seen by the ground sensors and the camera; the robot drives through them as
+//! floor paint of their colour's reflection factor, as seen from above (higher shapes over
+//! lower ones, later over earlier where level), seen by the ground sensors and the camera; the robot drives through them as
 //! in Webots. A mesh's triangles are read from its `.obj` file and painted cell by cell.
 //! Primitives in the proximity sensors' rays are sensed-only obstacles (`sensed.rs`). Every other visual-only shape is named in a warning
 //! (nothing of the world is lost without a word).
@@ -273,13 +273,17 @@ impl<'d> Importer<'d> {
                 }
                 let width = half[0][0].hypot(half[0][1]) * 2.0;
                 let depth = half[1][0].hypot(half[1][1]) * 2.0;
-                self.mark(PaintSpec::Rect {
-                    center: [Finite(snap(frame.origin[0])), Finite(snap(frame.origin[1]))],
-                    size: [Positive(width), Positive(depth)],
-                    yaw: Finite(snap(half[0][1].atan2(half[0][0]))),
-                    reflectance: Reflectance(reflectance),
-                    colour: colour.map(values::colour),
-                });
+                let top = frame.origin[2] + half_z;
+                self.mark(
+                    PaintSpec::Rect {
+                        center: [Finite(snap(frame.origin[0])), Finite(snap(frame.origin[1]))],
+                        size: [Positive(width), Positive(depth)],
+                        yaw: Finite(snap(half[0][1].atan2(half[0][0]))),
+                        reflectance: Reflectance(reflectance),
+                        colour: colour.map(values::colour),
+                    },
+                    top,
+                );
             }
             "Cylinder" => {
                 let radius = self.number(geometry, "radius", 1.0);
@@ -290,12 +294,16 @@ impl<'d> Importer<'d> {
                 if !on_floor(frame.origin[2] + half_z) || tilt(axis) > TILT_TOLERANCE {
                     return self.sensed_or_dropped(node, geometry, &parent);
                 }
-                self.mark(PaintSpec::Circle {
-                    center: [Finite(snap(frame.origin[0])), Finite(snap(frame.origin[1]))],
-                    radius: Positive(radius * scale),
-                    reflectance: Reflectance(reflectance),
-                    colour: colour.map(values::colour),
-                });
+                let top = frame.origin[2] + half_z;
+                self.mark(
+                    PaintSpec::Circle {
+                        center: [Finite(snap(frame.origin[0])), Finite(snap(frame.origin[1]))],
+                        radius: Positive(radius * scale),
+                        reflectance: Reflectance(reflectance),
+                        colour: colour.map(values::colour),
+                    },
+                    top,
+                );
             }
             "IndexedFaceSet" => {
                 if self.has_texture(node) && self.textured_face_set(node, geometry, &parent) {
@@ -336,7 +344,8 @@ impl<'d> Importer<'d> {
         })
     }
 
-    fn mark(&mut self, paint: PaintSpec) {
+    /// Records the paint of a mark whose top is `top` metres up (see [`Importer::marks_from_below`]).
+    fn mark(&mut self, paint: PaintSpec, top: f64) {
         let valid = match &paint {
             PaintSpec::Rect { size, .. } => size.iter().all(|s| s.0 > 0.0 && s.0.is_finite()),
             PaintSpec::Circle { radius, .. } => radius.0 > 0.0 && radius.0.is_finite(),
@@ -345,6 +354,7 @@ impl<'d> Importer<'d> {
         if valid {
             self.floor_marks.push(paint);
             self.floor_mark_owners.push(self.owners());
+            self.floor_mark_tops.push(top);
         }
     }
 
@@ -373,6 +383,8 @@ impl<'d> Importer<'d> {
                 let owners = self.owners();
                 self.floor_mark_owners
                     .extend(std::iter::repeat_n(owners, paint.len()));
+                self.floor_mark_tops
+                    .extend(std::iter::repeat_n(high, paint.len()));
                 self.floor_marks.extend(paint);
             }
             Err(why) => self.drop_visual(shape, geometry, &why),
@@ -446,16 +458,38 @@ impl<'d> Importer<'d> {
         colour: Option<[f64; 3]>,
     ) {
         let (x, y) = (frame.axis(0), frame.axis(1));
-        self.mark(PaintSpec::Rect {
-            center: [Finite(snap(frame.origin[0])), Finite(snap(frame.origin[1]))],
-            size: [
-                Positive(size[0] * x[0].hypot(x[1])),
-                Positive(size[1] * y[0].hypot(y[1])),
-            ],
-            yaw: Finite(snap(x[1].atan2(x[0]))),
-            reflectance: Reflectance(reflectance),
-            colour: colour.map(values::colour),
-        });
+        self.mark(
+            PaintSpec::Rect {
+                center: [Finite(snap(frame.origin[0])), Finite(snap(frame.origin[1]))],
+                size: [
+                    Positive(size[0] * x[0].hypot(x[1])),
+                    Positive(size[1] * y[0].hypot(y[1])),
+                ],
+                yaw: Finite(snap(x[1].atan2(x[0]))),
+                reflectance: Reflectance(reflectance),
+                colour: colour.map(values::colour),
+            },
+            frame.origin[2],
+        );
+    }
+
+    /// The floor marks in the order they are painted: the lower under the higher (seen from
+    /// above, a line 0.5 mm up lies on a floor slab whose top is at 0 whichever the world
+    /// writes first), and in the world's order where their tops are level; with the lines of
+    /// the nodes that hold each.
+    pub(super) fn marks_from_below(&mut self) -> (Vec<PaintSpec>, Vec<Vec<usize>>) {
+        let mut marks: Vec<(f64, PaintSpec, Vec<usize>)> =
+            std::mem::take(&mut self.floor_mark_tops)
+                .into_iter()
+                .zip(std::mem::take(&mut self.floor_marks))
+                .zip(std::mem::take(&mut self.floor_mark_owners))
+                .map(|((top, paint), owners)| (top, paint, owners))
+                .collect();
+        marks.sort_by(|a, b| a.0.total_cmp(&b.0)); // stable: level marks keep the world's order
+        marks
+            .into_iter()
+            .map(|(_, paint, owners)| (paint, owners))
+            .unzip()
     }
 }
 

@@ -202,6 +202,8 @@ pub struct Importer<'d> {
     pub floor_marks: Vec<crate::world::spec::PaintSpec>,
     /// Per floor mark, the lines of the nodes that hold it (a supervisor moves it with them).
     pub floor_mark_owners: Vec<Vec<usize>>,
+    /// Per floor mark, the height of its top (m): the higher is painted over the lower.
+    pub floor_mark_tops: Vec<f64>,
     /// Meshes of visual-only shapes, read after the walk.
     pub floor_meshes: Vec<FloorMesh>,
     /// Whether the nearest Solid around the walk has a `boundingObject` (its shapes are then
@@ -217,7 +219,9 @@ pub struct Importer<'d> {
     /// floor in Webots, so its height does not let the robot pass under it.
     pub falls: bool,
     /// How many collision shapes so far were low enough for the robot to drive on (imported
-    /// as floor): a Solid whose collision shapes all were is a mark on the floor.
+    /// as floor: a sheet within [`super::shapes::FLOOR_LEVEL`] of the floor, top and bottom,
+    /// where the world puts it, with or without physics; a pad of at most 2.5 mm without): a
+    /// Solid whose collision shapes all were is a mark on the floor.
     pub stood_on: usize,
     /// The vertical extent (m) of the last collision shape kept as an obstacle: a movable
     /// body's height as it rests on the floor.
@@ -297,6 +301,7 @@ fn walk<'d>(
         wall_textures: Vec::new(),
         floor_marks: Vec::new(),
         floor_mark_owners: Vec::new(),
+        floor_mark_tops: Vec::new(),
         floor_meshes: Vec::new(),
         bounded: false,
         warnings: doc.warnings.clone(),
@@ -356,6 +361,7 @@ fn finish((mut importer, basic_time_step_ms): (Importer<'_>, f64)) -> WbtImport 
             .warnings
             .push("no robot in the world: the e-puck starts at (0, 0) facing +x".into());
     }
+    let (paint, paint_owners) = importer.marks_from_below();
     let mut import = WbtImport {
         obstacles: importer.obstacles,
         obstacle_looks: importer.obstacle_looks,
@@ -380,8 +386,8 @@ fn finish((mut importer, basic_time_step_ms): (Importer<'_>, f64)) -> WbtImport 
         floor_textures: importer.floor_textures,
         wall_textures: importer.wall_textures,
         floor_meshes: importer.floor_meshes,
-        paint: importer.floor_marks,
-        paint_owners: importer.floor_mark_owners,
+        paint,
+        paint_owners,
         basic_time_step_ms,
         warnings: importer.warnings,
         one_controller_warnings: importer.one_controller_warnings,
@@ -681,7 +687,7 @@ impl<'d> Importer<'d> {
         if falls && !self.nodes(node, "boundingObject").is_empty() {
             let mass = self.physics_mass(node);
             let sphere = self.sphere_bounded(node);
-            if !self.make_movable(first, mass, sphere) {
+            if !self.make_movable(first, mass, sphere) && self.obstacles.len() > first {
                 self.warn_static(node);
             }
         }

@@ -153,6 +153,13 @@ impl<'d> Importer<'d> {
         }
         let top = center_z + half_z;
         if top <= FLOOR_LEVEL {
+            // A sheet lying on the floor (within 1 mm of it, top and bottom) is floor the robot
+            // drives on, without an edge to climb: its Solid's visible shapes are floor marks
+            // (`Importer::solid`). A slab the floor is made of (its bottom lower) or a shape
+            // buried under it adds nothing.
+            if center_z - half_z >= -FLOOR_LEVEL {
+                self.stood_on += 1;
+            }
             return false;
         }
         if top <= STOOD_ON && !self.falls {

@@ -1281,3 +1281,71 @@ fn a_pad_of_a_solid_the_robot_drives_on_is_a_floor_mark_of_its_colour() {
     assert!(close(floor.reflectance_at([-0.3, 0.02]), 1.0));
     assert_eq!(w.obstacles.len(), 1, "the post");
 }
+
+#[test]
+fn a_solid_whose_bounding_object_lies_on_the_floor_is_a_floor_mark_of_its_colour() {
+    // A black tile 1 mm thick with a bounding object (no edge for a wheel to climb), with and
+    // without physics: floor the robot drives on, whose colour its ground sensors see.
+    let tile = |x: f64, physics: &str| {
+        format!(
+            "Solid {{ translation {x} 0 0.0005 children [ DEF T Shape {{ \
+               appearance PBRAppearance {{ baseColor 0 0 0 }} geometry Box {{ size 0.1 0.1 0.001 }} }} ] \
+               boundingObject USE T {physics} }}\n"
+        )
+    };
+    // A slab the floor is made of (its top the floor's, its bottom 1 cm down) and a cone
+    // buried under the floor show nothing: the floor covers what they hold.
+    let slab = "Solid { translation 0 0.3 -0.005 children [ DEF S Shape { \
+        appearance PBRAppearance { baseColor 0 0 0 } geometry Box { size 0.1 0.1 0.01 } } ] \
+        boundingObject USE S }\n";
+    let buried = "Solid { translation 0 -0.3 -0.2 children [ DEF C Shape { \
+        appearance PBRAppearance { baseColor 0 0 0 } geometry Cylinder { radius 0.05 height 0.1 } } ] \
+        boundingObject USE C }\n";
+    let w = import(&format!(
+        "#VRML_SIM R2023b utf8\n{}{}{slab}{buried}",
+        tile(0.3, ""),
+        tile(-0.3, "physics Physics { mass 0.01 }")
+    ));
+    assert!(w.obstacles.is_empty() && w.bodies.is_empty(), "{w:#?}");
+    assert_eq!(w.paint.len(), 2, "{:?}", w.paint);
+    assert_eq!(
+        w.warnings.len(),
+        1,
+        "no robot, nothing else: {:?}",
+        w.warnings
+    );
+    assert!(
+        !warned(&w, "static obstacle") && !warned(&w, "a collision shape"),
+        "{:?}",
+        w.warnings
+    );
+    let world = w.to_world("tiles").unwrap();
+    let floor = world.floor();
+    assert!(close(floor.reflectance_at([0.3, 0.02]), 0.2));
+    assert!(close(floor.reflectance_at([-0.3, 0.02]), 0.2));
+    assert!(close(floor.reflectance_at([0.0, 0.02]), 1.0));
+}
+
+#[test]
+fn a_higher_floor_mark_lies_over_a_lower_one_whichever_the_world_writes_first() {
+    // A white line 0.5 mm up, then a black slab whose top is the floor's: the line shows on
+    // the slab; of two marks level with each other, the later one shows.
+    let w = import(
+        "#VRML_SIM R2023b utf8\n\
+         Pose { translation 0 0 0.00025 children [ Shape { appearance PBRAppearance { baseColor 1 1 1 } \
+           geometry Box { size 0.4 0.02 0.0005 } } ] }\n\
+         Pose { translation 0 0 -0.005 children [ Shape { appearance PBRAppearance { baseColor 0 0 0 } \
+           geometry Box { size 1 1 0.01 } } ] }\n\
+         Pose { translation 0.3 0.3 -0.005 children [ Shape { appearance PBRAppearance { baseColor 1 1 1 } \
+           geometry Box { size 0.1 0.1 0.01 } } ] }\n",
+    );
+    let world = w.to_world("slab").unwrap();
+    let floor = world.floor();
+    assert!(close(floor.reflectance_at([0.1, 0.0]), 1.0), "the line");
+    assert!(close(floor.reflectance_at([0.1, 0.2]), 0.2), "the slab");
+    assert!(
+        close(floor.reflectance_at([0.3, 0.3]), 1.0),
+        "the later level patch"
+    );
+    assert_eq!(w.paint_owners.len(), w.paint.len());
+}
