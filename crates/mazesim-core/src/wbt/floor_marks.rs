@@ -268,6 +268,9 @@ impl<'d> Importer<'d> {
                 }
                 let half = [0, 1, 2].map(|i| frame.axis(i).map(|c| c * size[i] / 2.0));
                 let half_z: f64 = half.iter().map(|a| a[2].abs()).sum();
+                if under_floor(frame.origin[2] + half_z) {
+                    return self.drop_visual(node, geometry, UNDER_FLOOR);
+                }
                 if !on_floor(frame.origin[2] + half_z) || tilt(frame.axis(2)) > TILT_TOLERANCE {
                     return self.sensed_or_dropped(node, geometry, &parent);
                 }
@@ -291,6 +294,9 @@ impl<'d> Importer<'d> {
                 let axis = frame.axis(2);
                 let half_z = (axis[2] * height / 2.0).abs();
                 let scale = frame.axis(0)[0].hypot(frame.axis(0)[1]);
+                if under_floor(frame.origin[2] + half_z) {
+                    return self.drop_visual(node, geometry, UNDER_FLOOR);
+                }
                 if !on_floor(frame.origin[2] + half_z) || tilt(axis) > TILT_TOLERANCE {
                     return self.sensed_or_dropped(node, geometry, &parent);
                 }
@@ -373,6 +379,9 @@ impl<'d> Importer<'d> {
             .fold(f64::NEG_INFINITY, |h, p| h.max(p[2]));
         if triangles.is_empty() {
             return self.drop_visual(shape, geometry, "without faces");
+        }
+        if under_floor(high) {
+            return self.drop_visual(shape, geometry, UNDER_FLOOR);
         }
         if !on_floor(high) {
             let why = format!("reaching {high:.3} m above the floor");
@@ -496,6 +505,15 @@ impl<'d> Importer<'d> {
 /// Whether a shape whose top is at `top` (metres) is a mark on the floor.
 fn on_floor(top: f64) -> bool {
     (-BELOW_FLOOR..FLOOR_MARK_HEIGHT).contains(&top)
+}
+
+/// Why a shape [`under_floor`] is not imported.
+const UNDER_FLOOR: &str = "under the floor (inside a slab the floor is made of, or buried), where nothing above the floor sees it";
+
+/// Whether a shape whose top is at `top` (metres) lies under the floor: nothing above the floor
+/// sees it (a supervisor that raises it later finds no mark; the warning says so).
+fn under_floor(top: f64) -> bool {
+    top < -BELOW_FLOOR
 }
 
 /// A point of a shape's local frame in the world.

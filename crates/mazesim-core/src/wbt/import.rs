@@ -219,9 +219,9 @@ pub struct Importer<'d> {
     /// floor in Webots, so its height does not let the robot pass under it.
     pub falls: bool,
     /// How many collision shapes so far were low enough for the robot to drive on (imported
-    /// as floor: a sheet within [`super::shapes::FLOOR_LEVEL`] of the floor, top and bottom,
-    /// where the world puts it, with or without physics; a pad of at most 2.5 mm without): a
-    /// Solid whose collision shapes all were is a mark on the floor.
+    /// as floor: a sheet or a slab whose top is within [`super::shapes::FLOOR_LEVEL`] of the
+    /// floor where the world puts it, with or without physics; a pad of at most 2.5 mm without):
+    /// a Solid whose collision shapes all were is a mark on the floor.
     pub stood_on: usize,
     /// The vertical extent (m) of the last collision shape kept as an obstacle: a movable
     /// body's height as it rests on the floor.

@@ -153,11 +153,10 @@ impl<'d> Importer<'d> {
         }
         let top = center_z + half_z;
         if top <= FLOOR_LEVEL {
-            // A sheet lying on the floor (within 1 mm of it, top and bottom) is floor the robot
-            // drives on, without an edge to climb: its Solid's visible shapes are floor marks
-            // (`Importer::solid`). A slab the floor is made of (its bottom lower) or a shape
-            // buried under it adds nothing.
-            if center_z - half_z >= -FLOOR_LEVEL {
+            // Floor the robot drives on, without an edge to climb: a sheet lying on it or a slab
+            // the floor is made of (its top within 1 mm of the floor's). Its Solid's visible
+            // shapes are floor marks (`Importer::solid`); a shape buried deeper adds nothing.
+            if top >= -FLOOR_LEVEL {
                 self.stood_on += 1;
             }
             return false;

@@ -1293,37 +1293,40 @@ fn a_solid_whose_bounding_object_lies_on_the_floor_is_a_floor_mark_of_its_colour
                boundingObject USE T {physics} }}\n"
         )
     };
-    // A slab the floor is made of (its top the floor's, its bottom 1 cm down) and a cone
-    // buried under the floor show nothing: the floor covers what they hold.
+    // A slab the floor is made of (its top the floor's, its bottom 1 cm down) shows its colour
+    // too; a cone buried under the floor with its Solid adds nothing, and a marker a supervisor
+    // keeps under it (no bounding object) is seen by nothing above it, as the import says.
     let slab = "Solid { translation 0 0.3 -0.005 children [ DEF S Shape { \
         appearance PBRAppearance { baseColor 0 0 0 } geometry Box { size 0.1 0.1 0.01 } } ] \
         boundingObject USE S }\n";
     let buried = "Solid { translation 0 -0.3 -0.2 children [ DEF C Shape { \
         appearance PBRAppearance { baseColor 0 0 0 } geometry Cylinder { radius 0.05 height 0.1 } } ] \
-        boundingObject USE C }\n";
+        boundingObject USE C }\n\
+        Pose { translation 0 -0.3 -0.2 children [ USE C ] }\n";
     let w = import(&format!(
         "#VRML_SIM R2023b utf8\n{}{}{slab}{buried}",
         tile(0.3, ""),
         tile(-0.3, "physics Physics { mass 0.01 }")
     ));
     assert!(w.obstacles.is_empty() && w.bodies.is_empty(), "{w:#?}");
-    assert_eq!(w.paint.len(), 2, "{:?}", w.paint);
-    assert_eq!(
-        w.warnings.len(),
-        1,
-        "no robot, nothing else: {:?}",
-        w.warnings
-    );
-    assert!(
-        !warned(&w, "static obstacle") && !warned(&w, "a collision shape"),
-        "{:?}",
-        w.warnings
-    );
+    assert_eq!(w.paint.len(), 3, "{:?}", w.paint);
+    assert_eq!(w.warnings.len(), 2, "{:?}", w.warnings);
+    assert!(warned(&w, "no robot in the world"));
+    assert!(warned(
+        &w,
+        "a Cylinder shape outside any Solid with a boundingObject"
+    ));
+    assert!(warned(&w, "under the floor"), "{:?}", w.warnings);
     let world = w.to_world("tiles").unwrap();
     let floor = world.floor();
     assert!(close(floor.reflectance_at([0.3, 0.02]), 0.2));
     assert!(close(floor.reflectance_at([-0.3, 0.02]), 0.2));
+    assert!(close(floor.reflectance_at([0.0, 0.32]), 0.2), "the slab");
     assert!(close(floor.reflectance_at([0.0, 0.02]), 1.0));
+    assert!(
+        close(floor.reflectance_at([0.0, -0.3]), 1.0),
+        "the buried cone"
+    );
 }
 
 #[test]
