@@ -7,9 +7,11 @@ TOML) and the import's warnings, or the import's error. Take one snapshot with a
 before the change (``PYTHONPATH=OLD/python``, OLD a worktree of the commit before it with its
 extension built) and one after; ``python tests/webots_corpus/import_snapshot.py compare BEFORE
 AFTER`` names each row whose import changed and how (the world's tables whose counts changed,
-the warnings gained and lost). The 396 worlds of the corpus whose mirrors were at hand imported
-in 91 s (2026-12-07, 2-core machine), where running their rows takes hours: the rows a change
-touched are the ones to run again (``run_corpus.py --only``).
+the warnings gained and lost; paths in warnings are said from the row's folder, so two
+snapshots differ only where the imports do). The 396 worlds of the corpus whose mirrors were at
+hand imported in 158 s, their exports from the mirrors included (2026-12-07, 2-core machine),
+where running their rows takes hours: the rows a change touched are the ones to run again
+(``run_corpus.py --only``).
 """
 
 from __future__ import annotations
@@ -17,6 +19,7 @@ from __future__ import annotations
 import argparse
 import json
 import re
+import shutil
 import sys
 import tempfile
 from collections import Counter
@@ -51,18 +54,25 @@ def import_row(project: Project, mirrors: Path, work: Path) -> dict[str, Any] | 
     except Exception as error:  # noqa: BLE001 - any failure (MirrorError too) is the row's import
         message = str(error).replace(f"{root}/", "")
         return {"name": project.name, "error": f"{type(error).__name__}: {message}"}
-    return {"name": project.name, "world": world.to_toml(), "warnings": list(report["warnings"])}
+    finally:
+        shutil.rmtree(root, ignore_errors=True)  # the exported files, read once
+    # Paths name the export's temporary folder, another at each snapshot: said from the row's.
+    warnings = [w.replace(f"{root}/", "") for w in report["warnings"]]
+    return {"name": project.name, "world": world.to_toml(), "warnings": warnings}
 
 
 def take(projects: list[Project], mirrors: Path, out: Path) -> int:
-    """Writes the import of every row whose mirror is at hand to ``out``; how many."""
+    """Writes the import of every row whose mirror is at hand to ``out`` (whole or not at all:
+    written beside it, then moved in); how many."""
     taken = 0
-    with tempfile.TemporaryDirectory(prefix="mazesim-imports-") as work, out.open("w") as lines:
+    part = out.with_name(out.name + ".part")
+    with tempfile.TemporaryDirectory(prefix="mazesim-imports-") as work, part.open("w") as lines:
         for project in projects:
             row = import_row(project, mirrors, Path(work))
             if row is not None:
                 lines.write(json.dumps(row) + "\n")
                 taken += 1
+    part.replace(out)
     return taken
 
 

@@ -17,6 +17,9 @@ E-puck { translation 0 0 0 controller "drive" }
 Solid { translation 0.3 0 0.05 children [ DEF W Shape { geometry Box { size 0.02 0.4 0.1 } } ]
   boundingObject USE W }
 Solid { translation 0 0.3 0.2 boundingObject Box { size 0.1 0.1 0.1 } }
+Solid { translation 0 -0.3 0.05 children [ Shape { appearance PBRAppearance {
+  baseColorMap ImageTexture { url [ "textures/absent.png" ] } }
+  geometry Box { size 0.1 0.1 0.1 } } ] boundingObject Box { size 0.1 0.1 0.1 } }
 """
 
 
@@ -49,11 +52,16 @@ def test_a_snapshot_holds_each_rows_import_and_a_comparison_names_what_changed(
     elsewhere = replace(_project("someone/elsewhere"), repo="someone/absent")
     before = tmp_path / "before.jsonl"
     assert take([_project(), elsewhere], mirrors, before) == 1
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["before.jsonl", "files", "mirrors"]
     (row,) = read(before).values()
     assert row["name"] == "someone/walls"
-    assert row["world"].count("[[walls]]") == 1, row["world"]  # the box above the robot: none
+    assert row["world"].count("[[walls]]") == 2, row["world"]  # none of the box above the robot
     assert any("passes over the robot" in w for w in row["warnings"]), row["warnings"]
-    assert compare(read(before), read(before)) == []
+    assert any("walls/worlds/textures/absent.png" in w for w in row["warnings"]), row["warnings"]
+    assert not any(str(tmp_path) in w or "/tmp" in w for w in row["warnings"]), row["warnings"]
+    again = tmp_path / "again.jsonl"  # another temporary folder for the export: the same rows
+    take([_project()], mirrors, again)
+    assert compare(read(before), read(again)) == []
 
     # The same row as another build might import it: one more paint, a warning traded.
     changed = dict(row)

@@ -7,8 +7,8 @@
 //!
 //! Shapes whose top is below [`FLOOR_MARK_HEIGHT`] (the proximity rays' lowest point) become
 //! floor paint of their colour's reflection factor, as seen from above (higher shapes over
-//! lower ones, later over earlier where level), seen by the ground sensors and the camera; the robot drives through them as
-//! in Webots. A mesh's triangles are read from its `.obj` file and painted cell by cell.
+//! lower ones, later over earlier where level), seen by the ground sensors and the camera; the
+//! robot drives through them as in Webots. A mesh's triangles are read from its `.obj` file and painted cell by cell.
 //! Primitives in the proximity sensors' rays are sensed-only obstacles (`sensed.rs`). Every other visual-only shape is named in a warning
 //! (nothing of the world is lost without a word).
 
@@ -267,16 +267,15 @@ impl<'d> Importer<'d> {
                     size = super::frames::y_up_size(size);
                 }
                 let half = [0, 1, 2].map(|i| frame.axis(i).map(|c| c * size[i] / 2.0));
-                let half_z: f64 = half.iter().map(|a| a[2].abs()).sum();
-                if under_floor(frame.origin[2] + half_z) {
+                let top = frame.origin[2] + half.iter().map(|a| a[2].abs()).sum::<f64>();
+                if under_floor(top) {
                     return self.drop_visual(node, geometry, UNDER_FLOOR);
                 }
-                if !on_floor(frame.origin[2] + half_z) || tilt(frame.axis(2)) > TILT_TOLERANCE {
+                if !on_floor(top) || tilt(frame.axis(2)) > TILT_TOLERANCE {
                     return self.sensed_or_dropped(node, geometry, &parent);
                 }
                 let width = half[0][0].hypot(half[0][1]) * 2.0;
                 let depth = half[1][0].hypot(half[1][1]) * 2.0;
-                let top = frame.origin[2] + half_z;
                 self.mark(
                     PaintSpec::Rect {
                         center: [Finite(snap(frame.origin[0])), Finite(snap(frame.origin[1]))],
@@ -292,15 +291,14 @@ impl<'d> Importer<'d> {
                 let radius = self.number(geometry, "radius", 1.0);
                 let height = self.number(geometry, "height", 2.0);
                 let axis = frame.axis(2);
-                let half_z = (axis[2] * height / 2.0).abs();
+                let top = frame.origin[2] + (axis[2] * height / 2.0).abs();
                 let scale = frame.axis(0)[0].hypot(frame.axis(0)[1]);
-                if under_floor(frame.origin[2] + half_z) {
+                if under_floor(top) {
                     return self.drop_visual(node, geometry, UNDER_FLOOR);
                 }
-                if !on_floor(frame.origin[2] + half_z) || tilt(axis) > TILT_TOLERANCE {
+                if !on_floor(top) || tilt(axis) > TILT_TOLERANCE {
                     return self.sensed_or_dropped(node, geometry, &parent);
                 }
-                let top = frame.origin[2] + half_z;
                 self.mark(
                     PaintSpec::Circle {
                         center: [Finite(snap(frame.origin[0])), Finite(snap(frame.origin[1]))],
@@ -508,7 +506,8 @@ fn on_floor(top: f64) -> bool {
 }
 
 /// Why a shape [`under_floor`] is not imported.
-const UNDER_FLOOR: &str = "under the floor (inside a slab the floor is made of, or buried), where nothing above the floor sees it";
+const UNDER_FLOOR: &str =
+    "under the floor (inside a slab the floor is made of, or buried), where nothing above the floor sees it";
 
 /// Whether a shape whose top is at `top` (metres) lies under the floor: nothing above the floor
 /// sees it (a supervisor that raises it later finds no mark; the warning says so).
