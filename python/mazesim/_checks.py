@@ -90,6 +90,9 @@ MOST_ARRAY_VALUES = 1 << 28
 #: Items of a sequence argument whose types are checked (the first ones: a check per call must not
 #: read a long sequence).
 SAMPLED_ITEMS = 8
+#: Items of a list or tuple of ints (``tuple[int, int]``, ``Sequence[Sequence[int]]``) read
+#: before the call, where ``int()`` would read 4.5 as 4 or True as 1 without a word.
+CHECKED_INT_ITEMS = 1024
 #: The integers an argument may be: what a signed or unsigned 64-bit integer holds.
 SMALLEST_INT, LARGEST_INT = -(1 << 63), (1 << 64) - 1
 
@@ -494,6 +497,44 @@ _PLAIN_TYPES: dict[Any, tuple[type, ...]] = {
 }
 
 
+def _int_item_depth(hint: Any) -> int:
+    """How deep ``hint`` (or its member besides None) nests sequences of ints: 1 for a list,
+    tuple or sequence of ints (``tuple[int, int]``), 2 for ``Sequence[Sequence[int]]``; 0 for
+    any other annotation."""
+    if typing.get_origin(hint) in _UNIONS:
+        members = [m for m in typing.get_args(hint) if m is not type(None)]
+        return _int_item_depth(members[0]) if len(members) == 1 else 0
+    if typing.get_origin(hint) not in (list, tuple, abc.Sequence, abc.MutableSequence):
+        return 0
+    items = {a for a in typing.get_args(hint) if a is not Ellipsis}
+    if items == {int}:
+        return 1
+    inner = {_int_item_depth(a) for a in items}
+    return 1 + inner.pop() if len(inner) == 1 and 0 not in inner else 0
+
+
+def _another_int_item(value: Any, depth: int, budget: list[int]) -> tuple[str, Any] | None:
+    """The place (``"item 0: item 2"``) and value of the first item of a list or tuple of ints
+    nested ``depth`` deep that ``int()`` would read as another number (a bool, 4.5, NaN), that
+    no 64-bit integer holds, or that is a list or tuple where an int belongs; at most
+    ``budget[0]`` items are read, the budget shared by the levels."""
+    for index, item in enumerate(value):
+        if budget[0] <= 0:
+            return None
+        budget[0] -= 1
+        if depth > 1:
+            inner = None
+            if isinstance(item, (list, tuple)):  # another kind is left to the usual check
+                inner = _another_int_item(item, depth - 1, budget)
+            if inner is not None:
+                return f"item {index}: {inner[0]}", inner[1]
+        elif isinstance(item, (list, tuple)) or _read_as_another_int(item):
+            return f"item {index}", item
+        elif type(item) is int and not SMALLEST_INT <= item <= LARGEST_INT:
+            return f"item {index}", item
+    return None
+
+
 def _plain_types(hint: Any) -> tuple[type, ...] | None:
     """The scalar types (of :data:`_SCALARS`) a value of ``hint`` may have without a closer
     look, or None when ``hint`` is one the scalar check leaves alone (``Any``, a choice of
@@ -569,6 +610,10 @@ class _Parameters:
         #: The parameters annotated as ints (not floats), which ``int()`` would read a bool or
         #: a float of 1.5 as, silently: checked before the call.
         self.ints: set[str] = set()
+        #: The parameters annotated as lists or tuples of ints, by how deep they nest
+        #: (:func:`_int_item_depth`): ``int()`` would read their items as silently, so they
+        #: are checked before the call.
+        self.int_items: dict[str, int] = {}
         #: The scalar types each plainly annotated parameter takes (:func:`_plain_types`): a
         #: bool, None or number of another type is refused before the call.
         self.plain: dict[str, tuple[type, ...]] = {}
@@ -598,6 +643,9 @@ class _Parameters:
                 self.by_name[p.name] = hint
             if _takes_int(hint):
                 self.ints.add(p.name)
+            depth = _int_item_depth(hint)
+            if depth:
+                self.int_items[p.name] = depth
             plain = _plain_types(hint) if hint is not Any else None
             if plain is not None:
                 self.plain[p.name] = plain
@@ -695,6 +743,14 @@ class _Parameters:
         for (name, hint), value in zip(pairs, values):  # noqa: B905 - one value per pair
             if hint is not Any and isinstance(value, _CONTAINERS) and name in self.plain:
                 self.refuse(name, value, hint)  # a list for a number: C code may recurse into it
+            if name in self.int_items and isinstance(value, (list, tuple)):
+                another = _another_int_item(value, self.int_items[name], [CHECKED_INT_ITEMS])
+                if another is not None:
+                    place, item = another
+                    reason = _refusal(item, int) or f"expected int, found {_describe(item)}"
+                    raise refusal_error(reason)(
+                        f"{self.func.__qualname__}: {name} refused: {place}: {reason}"
+                    )
             if hint is Any or not isinstance(value, _SCALARS):
                 continue
             if name in self.ints and (
@@ -764,7 +820,7 @@ def checked(func: Callable[..., Any], *, method: bool = False) -> Callable[..., 
             if isinstance(value, text):  # float("64") would take text for a number: check now
                 parameters.check_text(args, kwargs)
                 break
-        if parameters.ints or parameters.plain:  # int(True), float(True), f"{None}": check now
+        if parameters.ints or parameters.plain or parameters.int_items:  # int(True), f"{None}"
             for value in (*args, *kwargs.values()) if kwargs else args:
                 if isinstance(value, scalars_or_containers):
                     parameters.check_scalars(args, kwargs)

@@ -22,7 +22,15 @@ import numpy.typing as npt
 
 from mazesim.errors import InvalidArgumentError, _a_type, _shown
 
-__all__ = ["MOST_ENVS", "bounded_array", "bounded_list", "index_array", "seed_array", "size_of"]
+__all__ = [
+    "MOST_ENVS",
+    "bounded_array",
+    "bounded_list",
+    "index_array",
+    "seed_array",
+    "size_of",
+    "whole_array",
+]
 
 #: Most environments of a batch (the core's ``limits::MAX_ENVS``).
 MOST_ENVS = 1 << 24
@@ -101,7 +109,32 @@ def index_array(
         InvalidArgumentError: An index is out of range, not whole, or not a number; or there
             are more than ``most``.
     """
-    return _whole_numbers(value, name, count, most, np.int64)
+    return _whole_numbers(value, name, 0, count, most, np.int64)
+
+
+#: The smallest and the largest whole number :func:`whole_array` takes by default: int64's,
+#: less its lowest value (whose absolute value int64 cannot hold).
+SMALLEST_WHOLE = -(1 << 63) + 1
+LARGEST_WHOLE = (1 << 63) - 1
+
+
+def whole_array(
+    value: Any,
+    name: str,
+    low: int = SMALLEST_WHOLE,
+    high: int = LARGEST_WHOLE,
+    most: int | None = None,
+) -> npt.NDArray[np.int64]:
+    """``value`` as int64 whole numbers from ``low`` to ``high`` (checkpoint events, counts,
+    delays), refused unless each is one: numpy would cut 1.7 to 1 and read NaN as -2**63,
+    without a word. Booleans count as 0 and 1; floats that are whole are taken. Use
+    :func:`index_array` for indices into a collection.
+
+    Raises:
+        InvalidArgumentError: A value is out of range, not whole, or not a number; or there are
+            more than ``most``.
+    """
+    return _whole_numbers(value, name, low, high + 1, most, np.int64)
 
 
 def seed_array(value: Any, name: str, most: int) -> npt.NDArray[np.uint64]:
@@ -113,30 +146,27 @@ def seed_array(value: Any, name: str, most: int) -> npt.NDArray[np.uint64]:
         InvalidArgumentError: A seed is negative, too large, not whole, or not a number; or
             there are more than ``most``.
     """
-    return _whole_numbers(value, name, 1 << 64, most, np.uint64)
+    return _whole_numbers(value, name, 0, 1 << 64, most, np.uint64)
 
 
 def _whole_numbers(
-    value: Any, name: str, below: int, most: int | None, dtype: type[np.integer[Any]]
+    value: Any, name: str, low: int, below: int, most: int | None, dtype: type[np.integer[Any]]
 ) -> npt.NDArray[Any]:
-    """``value`` as an array of ``dtype``, each a whole number from 0 to ``below - 1``."""
+    """``value`` as an array of ``dtype``, each a whole number from ``low`` to ``below - 1``."""
+    expected = f"expected {name} as whole numbers{_range_words(low, below, dtype)}"
     try:
         array = np.asarray(value) if most is None else bounded_array(value, name, None, most)
     except InvalidArgumentError:
         raise  # too many values, said so by the bound
     except (TypeError, ValueError) as error:  # ragged nesting, unconvertible objects
         raise InvalidArgumentError(
-            f"expected {name} as whole numbers from 0 to {below - 1}, found {_a_type(value)}: "
-            f"{str(error)[:200]}"
+            f"{expected}, found {_a_type(value)}: {str(error)[:200]}"
         ) from None
     if array.dtype.kind not in "biuf":
-        raise InvalidArgumentError(
-            f"expected {name} as whole numbers from 0 to {below - 1}, found an array of dtype "
-            f"{array.dtype}"
-        )
-    if array.dtype.kind != "f" and (array.size == 0 or (array.min() >= 0 and array.max() < below)):
+        raise InvalidArgumentError(f"{expected}, found an array of dtype {array.dtype}")
+    if array.dtype.kind != "f" and (array.size == 0 or low <= array.min() and array.max() < below):
         return array.astype(dtype, copy=False)  # the usual case, in two passes
-    fit = (array >= 0) & (array < below)
+    fit = (array >= low) & (array < below)
     if array.dtype.kind == "f":
         fit &= array == np.floor(array)
         if not isinstance(value, np.ndarray):
@@ -147,10 +177,16 @@ def _whole_numbers(
                 return exact
     if not np.all(fit):
         found = array[~fit].flat[0].item()
-        raise InvalidArgumentError(
-            f"expected {name} as whole numbers from 0 to {below - 1}, found {_shown(found)}"
-        )
+        raise InvalidArgumentError(f"{expected}, found {_shown(found)}")
     return array.astype(dtype, copy=False)
+
+
+def _range_words(low: int, below: int, dtype: type[np.integer[Any]]) -> str:
+    """The range of :func:`_whole_numbers` as a message says it: " from 0 to 5", " of 0 or
+    more" (a signed type, no bound above but its own), or nothing (a signed type's range)."""
+    if np.iinfo(dtype).min < 0 and below - 1 >= np.iinfo(dtype).max:
+        return "" if low <= SMALLEST_WHOLE else f" of {low} or more"
+    return f" from {low} to {below - 1}"
 
 
 def _exactly(value: Any, dtype: type[np.integer[Any]]) -> npt.NDArray[Any] | None:

@@ -28,7 +28,7 @@ import numpy.typing as npt
 from mazesim._core import RobotProfile, World
 from mazesim._seeding import seed_sequence
 from mazesim._seeding import stream as random_stream
-from mazesim._sizes import index_array
+from mazesim._sizes import index_array, whole_array
 from mazesim.batch import CONTROL_STEP_MS, RobotBatch, RobotChoice, cruise_step_length
 from mazesim.errors import (
     InvalidArgumentError,
@@ -204,7 +204,11 @@ class EpisodeBatch:
         The buffers hold the new robots' first observations afterwards.
         """
         robots = index_array(envs, "envs", self.num_envs).ravel()
-        numbers = np.asarray(episodes, dtype=np.int64).ravel()
+        numbers = whole_array(episodes, "episodes", low=0).ravel()
+        if numbers.size != robots.size:
+            raise InvalidArgumentError(
+                f"expected one episode number per robot ({robots.size}), found {numbers.size}"
+            )
         poses = np.zeros((robots.size, 3))
         seeds = np.zeros(robots.size, dtype=np.uint64)
         for row, (env, episode) in enumerate(zip(robots, numbers)):

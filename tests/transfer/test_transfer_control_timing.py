@@ -66,7 +66,8 @@ def test_latency_is_per_robot_and_restarts_with_an_episode() -> None:
 
 
 def test_a_negative_latency_is_refused() -> None:
-    with pytest.raises(InvalidArgumentError, match="0 or more control steps, found -1"):
+    refused = "delays as whole numbers from 0 to 4000, found -1"
+    with pytest.raises(InvalidArgumentError, match=refused):
         DelayedNavigator(Scripted(), [0, -1])
 
 

@@ -243,6 +243,17 @@ def test_a_file_it_cannot_read_ends_the_controller_with_one_line_saying_why(
     assert "Traceback" not in err
 
 
+def test_run_automaton_called_as_a_function_raises_what_it_cannot_read(tmp_path: Path) -> None:
+    # Only the controller program ends the process; the function raises as every other does
+    # (it once raised SystemExit(1), which ends a caller's process).
+    from mazesim.webots.botstudio import run_automaton
+
+    with pytest.raises(mazesim.MazesimError, match="expected a state of 18 fields, found 3"):
+        run_automaton(str(write_automaton(tmp_path, "bad", HEADER + "S;1;2\n")))
+    with pytest.raises(mazesim.MazesimError):
+        run_automaton(str(tmp_path / "missing.bsg"))
+
+
 def test_a_number_of_thousands_of_digits_reads_as_qt_reads_one_out_of_range() -> None:
     # Qt's toInt gives 0 beyond an int's range; Python's int() refuses over 4300 digits.
     text = HEADER + f"S;0;go;0;0;1;{KEEP}{'9' * 5000};50;\n"

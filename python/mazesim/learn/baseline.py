@@ -28,10 +28,17 @@ import numpy.typing as npt
 from mazesim._core import World
 from mazesim._seeding import stream
 from mazesim._settings import MAX_COUNT, bounded, check_settings
+from mazesim._sizes import index_array, whole_array
 from mazesim.actions import ACTION_CODES
 from mazesim.episodes import MAX_STEPS, EpisodeBatch
 from mazesim.learn import qlearning
-from mazesim.learn.discretise import NUM_SENSORS, NUM_STATES, distances_and_levels, encode_state
+from mazesim.learn.discretise import (
+    NUM_LEVELS,
+    NUM_SENSORS,
+    NUM_STATES,
+    distances_and_levels,
+    encode_state,
+)
 from mazesim.learn.policy import StepRecord
 from mazesim.maze import checkpoint_ids
 
@@ -115,7 +122,7 @@ class FlatNavigator:
 
     def reset(self, envs: npt.ArrayLike, poses: npt.ArrayLike) -> None:
         """Forgets the last checkpoint event of robots ``envs``."""
-        self.context[np.asarray(envs, dtype=np.int64)] = 0
+        self.context[index_array(envs, "envs", self.num_envs)] = 0
 
     def states(self, observations: npt.ArrayLike, events: npt.ArrayLike) -> npt.NDArray[np.int64]:
         """Notes the events and returns each robot's state."""
@@ -129,14 +136,14 @@ class FlatNavigator:
         self, levels: npt.ArrayLike, events: npt.ArrayLike
     ) -> npt.NDArray[np.int64]:
         """Notes the events and returns each robot's state from its (N, 6) levels."""
-        event = np.asarray(events, dtype=np.int64)
+        event = whole_array(events, "events")
         checkpoint = np.abs(event)
         known = (event != 0) & (checkpoint < self._place.size)
         place = np.where(known, self._place[np.where(known, checkpoint, 0)], -1)
         seen = place >= 0
         self.context[seen] = 1 + 2 * place[seen] + (event[seen] < 0)
         record = self.record
-        record.levels = np.asarray(levels, dtype=np.int64)
+        record.levels = index_array(levels, "levels", NUM_LEVELS)
         record.state = np.asarray(encode_state(record.levels))
         record.event = event
         return record.state + NUM_STATES * self.context

@@ -29,6 +29,7 @@ import numpy as np
 import numpy.typing as npt
 
 from mazesim._core import RobotProfile, World
+from mazesim._sizes import index_array
 from mazesim.episodes import EpisodeBatch, EpisodeResult, run_episodes
 from mazesim.errors import InvalidArgumentError, _known_name, _shown
 from mazesim.learn.higher import HigherLevel
@@ -50,7 +51,8 @@ class _NumberedEpisodes(EpisodeBatch):
 
     def start(self, envs: npt.ArrayLike, episodes: npt.ArrayLike) -> None:
         """Starts the episodes whose slots are ``episodes`` under their evaluation numbers."""
-        super().start(envs, self.numbers[np.asarray(episodes, dtype=np.int64)])
+        slots = index_array(episodes, "episodes", len(self.numbers))
+        super().start(envs, self.numbers[slots])
 
 
 @dataclass(frozen=True, eq=False)

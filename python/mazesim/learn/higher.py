@@ -27,10 +27,13 @@ from collections.abc import Sequence
 import numpy as np
 import numpy.typing as npt
 
-from mazesim._sizes import index_array
+from mazesim._sizes import index_array, whole_array
 from mazesim.errors import InvalidArgumentError
 from mazesim.learn import qlearning
 from mazesim.learn.subtasks import NUM_SUBTASKS
+
+#: The largest checkpoint id a navigator's tables hold (a world's ids run from 1).
+MAX_CHECKPOINT_ID = 65535
 
 __all__ = [
     "CONTACT_REWARD",
@@ -39,6 +42,7 @@ __all__ = [
     "STEP_REWARD",
     "HigherLearner",
     "HigherLevel",
+    "MAX_CHECKPOINT_ID",
     "event_state_names",
 ]
 
@@ -81,14 +85,19 @@ class HigherLevel:
         q: npt.ArrayLike | None = None,
         visits: npt.ArrayLike | None = None,
     ) -> None:
-        self.checkpoint_ids = [sorted(int(c) for c in ids) for ids in checkpoint_ids]
+        self.checkpoint_ids = [
+            sorted(whole_array(ids, "checkpoint_ids", 1, MAX_CHECKPOINT_ID).ravel().tolist())
+            for ids in checkpoint_ids
+        ]
         if not self.checkpoint_ids:
             raise InvalidArgumentError("expected the checkpoints of at least one world")
         self.num_states = max(1, 2 * max(len(ids) for ids in self.checkpoint_ids))
         shape = (len(self.checkpoint_ids), self.num_states, NUM_SUBTASKS)
         self.q = np.zeros(shape) if q is None else np.array(q, dtype=np.float64)
         self.visits = (
-            np.zeros(shape, dtype=np.int64) if visits is None else np.array(visits, dtype=np.int64)
+            np.zeros(shape, dtype=np.int64)
+            if visits is None
+            else np.array(whole_array(visits, "visits", low=0))
         )
         if self.q.shape != shape or self.visits.shape != shape:
             raise InvalidArgumentError(
@@ -104,7 +113,7 @@ class HigherLevel:
     def states(self, worlds: npt.ArrayLike, events: npt.ArrayLike) -> npt.NDArray[np.int64]:
         """Flat state numbers (``world * num_states + state``) of events; -1 for an unknown id."""
         world = index_array(worlds, "worlds", len(self.checkpoint_ids))
-        event = np.asarray(events, dtype=np.int64)
+        event = whole_array(events, "events")
         checkpoint = np.abs(event)
         known = (event != 0) & (checkpoint < self._index.shape[1])
         place = np.where(known, self._index[world, np.where(known, checkpoint, 0)], -1)
@@ -152,7 +161,7 @@ class HigherLearner:
         Robots whose event is unknown (state -1) close nothing and keep their decision open.
         """
         robots = index_array(envs, "envs", self.state.size)
-        new_states = np.asarray(states, dtype=np.int64)
+        new_states = whole_array(states, "states", -1, self.level.q.size // NUM_SUBTASKS - 1)
         known = new_states >= 0
         robots, new_states = robots[known], new_states[known]
         chosen = index_array(options, "options", NUM_SUBTASKS)[known]

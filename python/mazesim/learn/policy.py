@@ -26,7 +26,7 @@ import numpy as np
 import numpy.typing as npt
 
 from mazesim._core import Navigator, RobotProfile
-from mazesim._sizes import index_array
+from mazesim._sizes import index_array, whole_array
 from mazesim.actions import ACTION_CODES, WHEEL_SPEED_FRACTIONS
 from mazesim.errors import InvalidArgumentError
 from mazesim.learn.discretise import NUM_SENSORS, volts_to_cm
@@ -93,7 +93,8 @@ class HierarchicalPolicy:
         #: Whether the door sub-tasks' phases count the distance (the tables' shape says).
         self.door_distance = door_distance
         self.higher = higher
-        self.world_of_env = np.asarray(world_of_env, dtype=np.int64).ravel()
+        worlds = len(higher.checkpoint_ids)
+        self.world_of_env = index_array(world_of_env, "world_of_env", worlds).ravel()
         self.num_envs = self.world_of_env.size
         self.chooser = chooser
         self.hold_heading = hold_heading
@@ -143,7 +144,7 @@ class HierarchicalPolicy:
     ) -> npt.NDArray[np.int64]:
         """:meth:`act` from the six distances in cm of each robot, ``(N, 6)``."""
         pose_rows = np.ascontiguousarray(poses, dtype=np.float64)
-        event = np.asarray(events, dtype=np.int64)
+        event = whole_array(events, "events")
         record = self.record
         record.distances_cm = np.ascontiguousarray(distances_cm, dtype=np.float64).reshape(
             -1, NUM_SENSORS

@@ -160,10 +160,11 @@ def batch_update(
     state_array = index_array(states, "states", num_states).ravel()
     action_array = index_array(actions, "actions", num_actions).ravel()
     count = state_array.size
-    if action_array.size != count or np.size(rewards) != count:
+    following = index_array(next_states, "next_states", num_states).ravel()
+    if action_array.size != count or np.size(rewards) != count or following.size != count:
         raise InvalidArgumentError(
-            f"expected as many actions and rewards as states ({count}), "
-            f"found {action_array.size} and {np.size(rewards)}"
+            f"expected as many actions, rewards and next_states as states ({count}), "
+            f"found {action_array.size}, {np.size(rewards)} and {following.size}"
         )
     if count == 0:
         return
@@ -171,7 +172,6 @@ def batch_update(
     factors = np.ascontiguousarray(
         np.broadcast_to(np.asarray(bootstrap, dtype=np.float64).ravel(), (count,)), dtype=np.float64
     )
-    following = np.ascontiguousarray(np.ravel(next_states), dtype=np.int64)
     mask = (
         np.ones(num_actions, dtype=bool)
         if allowed is None

@@ -77,7 +77,7 @@ from mazesim.errors import (
     _shown,
 )
 from mazesim.learn.discretise import LEVEL_EDGES_CM, NUM_STATES, SENSOR_ORDER, SHARP_TABLE
-from mazesim.learn.higher import event_state_names
+from mazesim.learn.higher import MAX_CHECKPOINT_ID, event_state_names
 from mazesim.learn.lower import LowerTables, lower_table_shape
 from mazesim.learn.schema import (
     MAX_METADATA_BYTES,
@@ -153,9 +153,9 @@ CHECKPOINT_MEMBER = "checkpoint.json"
 SUBTASK_TABLES = ("corridor", "right", "left", "forward")
 KINDS = ("hierarchical", "flat")
 HEX_DIGITS = "0123456789abcdef"
-#: The most checkpoints a navigator's world may have, and the largest checkpoint id.
+#: The most checkpoints a navigator's world may have (its largest checkpoint id is
+#: :data:`mazesim.learn.higher.MAX_CHECKPOINT_ID`).
 MAX_CHECKPOINTS = 1024
-MAX_CHECKPOINT_ID = 65535
 #: The most lower-level rounds a run may have.
 MAX_ROUNDS = 10**9
 #: The most dimensions a table may have.

@@ -265,10 +265,10 @@ class MazeGoalsTask(MultiRobotTask):
     ) -> None:
         super().__init__(num_robots, max_cycles, body_radius)
         columns, rows = (int(v) for v in maze_size)
-        if columns * rows < num_robots or min(columns, rows) < 2:
+        if columns * rows < num_robots or min(columns, rows) < 2 or max(columns, rows) > 200:
             raise InvalidArgumentError(
-                f"expected a maze of at least 2 x 2 cells and as many cells as robots "
-                f"({num_robots}), found {columns} x {rows}"
+                f"expected a maze of 2 to 200 cells a side (generate_maze's sizes) and as many "
+                f"cells as robots ({num_robots}), found {columns} x {rows}"
             )
         self.maze_size = (columns, rows)
         self.loops = finite_number("loops", loops)

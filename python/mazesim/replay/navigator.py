@@ -17,6 +17,7 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
+from mazesim._sizes import whole_array
 from mazesim.actions import ACTION_CODES
 from mazesim.episodes import EpisodeBatch, NavigatorWrapper
 from mazesim.errors import RegisteredName
@@ -75,7 +76,7 @@ class NavigatorRecorder(NavigatorWrapper):
         self, observations: npt.ArrayLike, poses: npt.ArrayLike, events: npt.ArrayLike
     ) -> npt.NDArray[np.int64]:
         """Records the frames, lets the navigator act, records what it did."""
-        event_row = np.asarray(events, dtype=np.int64)
+        event_row = whole_array(events, "events")
         running = self._recording()
         for env, recorder in running:
             self._add_frame(env, recorder, int(event_row[env]))

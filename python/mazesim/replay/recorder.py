@@ -20,8 +20,9 @@ import numpy as np
 import numpy.typing as npt
 
 from mazesim._core import RobotProfile, Simulator, World
+from mazesim._sizes import index_array
 from mazesim.learn import qlearning
-from mazesim.learn.discretise import NUM_SENSORS, distances_and_levels
+from mazesim.learn.discretise import NUM_LEVELS, NUM_SENSORS, distances_and_levels
 from mazesim.replay.run import Decision, RecordedEpisode, RecordedRun, RunRobot
 from mazesim.sensor_rays import SensorRays
 
@@ -139,7 +140,7 @@ class EpisodeRecorder:
             self.subtasks.append(int(subtask))
         if levels is not None:
             _pad(self.levels, frame, np.zeros(NUM_SENSORS, dtype=np.int64))
-            self.levels.append(np.asarray(levels, dtype=np.int64).ravel())
+            self.levels.append(index_array(levels, "levels", NUM_LEVELS).ravel())
 
     def add_decision(
         self, checkpoint_event: int, code: str, q_values: Sequence[float], chosen: int, greedy: bool

@@ -27,6 +27,7 @@ import numpy.typing as npt
 
 from mazesim._core import DrivePerturbation, RobotProfile, SensingPerturbation, World
 from mazesim._seeding import stream_seeds
+from mazesim._sizes import index_array, whole_array
 from mazesim.batch import cruise_step_length
 from mazesim.episodes import (
     MAX_STEPS,
@@ -115,8 +116,8 @@ class _CellEpisodes(EpisodeBatch):
     episodes_per_cell = 1
 
     def start(self, envs: npt.ArrayLike, episodes: npt.ArrayLike) -> None:
-        robots = np.asarray(envs, dtype=np.int64).ravel()
-        numbers = np.asarray(episodes, dtype=np.int64).ravel()
+        robots = index_array(envs, "envs", self.num_envs).ravel()
+        numbers = whole_array(episodes, "episodes", low=0).ravel()
         super().start(robots, numbers % self.episodes_per_cell)
         self.episode[robots] = numbers
 

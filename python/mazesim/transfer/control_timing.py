@@ -25,9 +25,9 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
+from mazesim._sizes import index_array, whole_array
 from mazesim.barcode.link import UnsyncedLink
-from mazesim.episodes import NavigatorWrapper
-from mazesim.errors import InvalidArgumentError
+from mazesim.episodes import MAX_STEPS, NavigatorWrapper
 
 __all__ = ["DelayedNavigator", "LinkedNavigator"]
 
@@ -45,11 +45,8 @@ class DelayedNavigator(NavigatorWrapper):
 
     def __init__(self, navigator: Any, delays: npt.ArrayLike) -> None:
         self.navigator = navigator
-        self.delays = np.asarray(delays, dtype=np.int64).ravel()
-        if self.delays.size and int(self.delays.min()) < 0:
-            raise InvalidArgumentError(
-                f"expected latencies of 0 or more control steps, found {int(self.delays.min())}"
-            )
+        # Longer than the longest episode would hold nothing back but memory (one row a step).
+        self.delays = whole_array(delays, "delays", 0, MAX_STEPS).ravel()
         count = self.delays.size
         longest = int(self.delays.max()) if count else 0
         # history[j, i]: the command robot i's navigator chose j steps ago (-1: none yet).
@@ -58,7 +55,7 @@ class DelayedNavigator(NavigatorWrapper):
 
     def reset(self, envs: npt.ArrayLike, poses: npt.ArrayLike) -> None:
         """Starts robots ``envs`` afresh: no command sent yet."""
-        self.history[:, np.asarray(envs, dtype=np.int64)] = -1
+        self.history[:, index_array(envs, "envs", self.history.shape[1])] = -1
         self.navigator.reset(envs, poses)
 
     def act(
@@ -93,7 +90,7 @@ class LinkedNavigator(NavigatorWrapper):
 
     def reset(self, envs: npt.ArrayLike, poses: npt.ArrayLike) -> None:
         """Starts robots ``envs`` afresh: their node sends a command at the first step."""
-        robots = np.asarray(envs, dtype=np.int64)
+        robots = index_array(envs, "envs", self.command.size)
         self.command[robots] = -1
         self.pending[robots] = 0
         self.navigator.reset(envs, poses)
@@ -102,7 +99,7 @@ class LinkedNavigator(NavigatorWrapper):
         self, observations: npt.ArrayLike, poses: npt.ArrayLike, events: npt.ArrayLike
     ) -> npt.NDArray[np.int64]:
         """The commands the motors run now: new ones from the nodes awake, the last otherwise."""
-        event = np.asarray(events, dtype=np.int64)
+        event = whole_array(events, "events")
         awake = self.link.tick() | ~self.linked | (self.command < 0)
         self.pending = np.where(event != 0, event, self.pending)
         delivered = np.where(awake, self.pending, 0)

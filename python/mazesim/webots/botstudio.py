@@ -36,12 +36,11 @@ from __future__ import annotations
 
 import math
 import re
-import sys
 from dataclasses import dataclass, field
 from typing import Any
 
 from mazesim._paths import MAX_TEXT_CHARACTERS, read_input
-from mazesim.errors import InvalidArgumentError, MazesimError, _shown
+from mazesim.errors import InvalidArgumentError, _shown
 from mazesim.webots.node_types import node_type
 
 __all__ = ["Automaton", "State", "Transition", "read_automaton", "run_automaton"]
@@ -391,18 +390,17 @@ def run_automaton(path: str) -> None:
     """Runs the BotStudio file ``path`` on the run's robot until the run ends (the controller of
     a world's robot whose controller is ``NAME.bsg``).
 
-    A file that cannot be read, or that is not an automaton BotStudio reads (see
-    :func:`read_automaton`), ends the controller with exit status 1 and one line on stderr
-    saying why (``BotStudio: ...``), not a traceback of mazesim's.
+    Raises:
+        MazesimError: The file cannot be read, or is not an automaton BotStudio reads (see
+            :func:`read_automaton`); read before the robot is made. The controller program a
+            world's ``.bsg`` controller runs (``mazesim.webots.runner.BOTSTUDIO_PROGRAM``) ends
+            then with exit status 1 and one line on stderr saying why (``BotStudio: ...``), not
+            a traceback of mazesim's.
     """
     from mazesim.webots.controller import Robot
 
-    try:
-        data = read_input(path, MAX_TEXT_CHARACTERS, "the BotStudio automaton")
-        automaton = read_automaton(data.decode("utf-8", errors="replace"), path)
-    except MazesimError as error:
-        print(f"BotStudio: {error}", file=sys.stderr)
-        raise SystemExit(1) from None
+    data = read_input(path, MAX_TEXT_CHARACTERS, "the BotStudio automaton")
+    automaton = read_automaton(data.decode("utf-8", errors="replace"), path)
     robot = _Robot(Robot())
     current = automaton.initial()
     if current is None:

@@ -17,6 +17,7 @@ import numpy as np
 import numpy.typing as npt
 
 from mazesim._core import World
+from mazesim._sizes import index_array
 from mazesim.errors import _shown
 
 __all__ = ["FloorPaint", "WallBoxes"]
@@ -109,7 +110,7 @@ class WallBoxes:
         if not walls:
             return self
         moved = copy.copy(self)
-        index = np.asarray(walls, dtype=np.intp)
+        index = index_array(walls, "walls", len(self.center))
         turn = now[2] - before[2]
         c, s = math.cos(turn), math.sin(turn)
         dx = self.center[index, 0] - before[0]

@@ -122,7 +122,16 @@ CONTROLLER_SUFFIXES = (
     ".bsg",
 )
 #: The program that runs a BotStudio automaton as the controller (``__file__`` its ``.bsg``).
-BOTSTUDIO_PROGRAM = "from mazesim.webots.botstudio import run_automaton\nrun_automaton(__file__)\n"
+BOTSTUDIO_PROGRAM = """\
+import sys
+from mazesim.errors import MazesimError
+from mazesim.webots.botstudio import run_automaton
+try:
+    run_automaton(__file__)
+except MazesimError as error:
+    print(f"BotStudio: {error}", file=sys.stderr)
+    raise SystemExit(1) from None
+"""
 
 
 #: The other languages Webots runs controllers in, by file suffix: mazesim runs none of them.
