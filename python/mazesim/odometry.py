@@ -18,6 +18,8 @@ Example:
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import numpy.typing as npt
 
@@ -53,12 +55,24 @@ def advance(
         left: (N,) metres the left wheels rolled since the poses were last advanced.
         right: (N,) metres the right wheels rolled.
         axle_length: Distance between the wheels, in metres.
+
+    Raises:
+        InvalidArgumentError: A travel is not finite, or the axle length not more than 0: the
+            poses are left as they were.
     """
     left_travel = np.asarray(left, dtype=np.float64)
     right_travel = np.asarray(right, dtype=np.float64)
+    for travel in (left_travel, right_travel):
+        if not np.all(np.isfinite(travel)):
+            found = travel[~np.isfinite(travel)].flat[0]
+            raise InvalidArgumentError(f"expected finite wheel travels in metres, found {found}")
+    if not (math.isfinite(axle_length) and axle_length > 0.0):
+        raise InvalidArgumentError(f"expected an axle length of more than 0 m, found {axle_length}")
     forward = 0.5 * (left_travel + right_travel)
     turn = (right_travel - left_travel) / axle_length
     heading = pose[:, 2] + 0.5 * turn
-    pose[:, 0] += forward * np.cos(heading)
-    pose[:, 1] += forward * np.sin(heading)
-    pose[:, 2] = wrap_angle(pose[:, 2] + turn)
+    # A pose that is not finite makes the yaw so: refused before any pose moves.
+    yaw = wrap_angle(pose[:, 2] + turn)
+    x = pose[:, 0] + forward * np.cos(heading)
+    y = pose[:, 1] + forward * np.sin(heading)
+    pose[:, 0], pose[:, 1], pose[:, 2] = x, y, yaw

@@ -96,6 +96,24 @@ def test_advance_drives_straight_turns_on_the_spot_and_closes_a_circle() -> None
     assert wrap_angle(math.pi) == pytest.approx(-math.pi)
 
 
+@pytest.mark.parametrize(
+    ("left", "right", "axle", "words"),
+    [
+        (math.nan, 0.01, 0.05, "finite wheel travels in metres, found nan"),
+        (math.inf, math.inf, 0.05, "finite wheel travels in metres, found inf"),
+        (0.01, 0.02, 0.0, "an axle length of more than 0 m, found 0.0"),
+    ],
+)
+def test_advance_refuses_a_travel_that_is_not_finite_before_any_pose_moves(
+    left: float, right: float, axle: float, words: str
+) -> None:
+    pose = np.array([[0.1, 0.2, 0.3], [0.4, 0.5, 0.6]])
+    with pytest.raises(InvalidArgumentError, match=words):
+        advance(pose, [0.01, left], [0.01, right], axle)
+    # Once, x and y of every robot had moved (to NaN for the bad one) before the yaw refused.
+    assert pose.tolist() == [[0.1, 0.2, 0.3], [0.4, 0.5, 0.6]]
+
+
 @pytest.mark.parametrize("robot", ["seed", "e-puck", "e-puck2", "alphabot2"])
 def test_on_a_nominal_robot_the_encoders_follow_the_true_pose(run: CellRun, robot: str) -> None:
     # Each profile's own wheels, axle and encoder resolution (the e-puck's steps of 2 pi / 1000).
