@@ -110,3 +110,15 @@ def test_a_controller_killed_without_a_word_leaves_what_its_last_step_sent(
     for idle, y in ((empty, 0.5), (none, -0.5)):
         assert idle.controller is None and idle.exit_status == 0
         assert idle.final_pose[:2] == pytest.approx((0.0, y), abs=1e-6)
+
+
+def test_a_world_whose_robots_run_no_controller_still_runs_its_seconds(tmp_path: Path) -> None:
+    # Webots runs such a world until it is stopped; the run once ended at 0 s, with no step.
+    world = project_of(tmp_path, "idle.wbt", WORLD.split("Robot {")[0] + IDLE, {})
+    run = run_world(str(world), seconds=SECONDS, noise=False)
+    steps = round(SECONDS / STEP_S)
+    assert run.steps == steps and run.simulated_seconds == pytest.approx(SECONDS)
+    assert not run.interrupted
+    for idle, y in zip(run.robots, (0.5, -0.5)):
+        assert idle.controller is None and len(idle.xs) == steps + 1
+        assert idle.final_pose[:2] == pytest.approx((0.0, y), abs=1e-6)

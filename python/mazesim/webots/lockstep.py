@@ -866,6 +866,8 @@ def run_world(
         steps, interrupted = _lockstep(
             jobs, simulators, movable, fleet, runs, traction, watch, joined
         )
+        if not jobs and not interrupted:
+            steps, interrupted = _unattended(simulators, fleet, runs, traction, watch, seconds)
     if watch is not None:
         watch(simulators, None)
     for run, simulator in zip(runs, simulators):
@@ -1201,6 +1203,29 @@ def _lockstep(
         for connection in [*connections.values(), *world.retired.values()]:
             connection.close()
     return steps, deadline is not None
+
+
+def _unattended(
+    simulators: list[Any],
+    fleet: Fleet,
+    runs: list[RobotRun],
+    traction: WorldTraction,
+    watch: Callable[[list[Any], Mapping[int, tuple[float, float]] | None], None] | None,
+    seconds: float,
+) -> tuple[int, bool]:
+    """Steps a world none of whose robots runs a controller until ``seconds`` of world time (or
+    Ctrl-C), as Webots runs such a world until it is stopped: bodies fall and roll, every
+    robot's motors hold its wheels. Returns the number of steps and whether Ctrl-C ended it."""
+    steps = 0
+    with Interruption() as interruption:
+        while float(simulators[0].time) < seconds - 1e-9 and not interruption.requested:
+            if watch is not None:
+                watch(simulators, {})
+            fleet.note_poses()
+            _step_world(simulators, traction.drive({}), fleet.radio, runs)
+            traction.settle()
+            steps += 1
+    return steps, interruption.requested
 
 
 class _Pipes:
