@@ -21,6 +21,7 @@ from typing import Any, NoReturn
 import mazesim
 from mazesim._error_tree import io_error
 from mazesim.cli._help import CommandParser, examples
+from mazesim.cli.crash_guard import CrashWatch, runs_a_controller_here
 from mazesim.errors import MazesimError, _closest_name, _command_line, _plain, _shown
 
 __all__ = ["COMMANDS", "build_parser", "main"]
@@ -374,7 +375,13 @@ def main(argv: Sequence[str] | None = None) -> int:
     Returns:
         The exit code: 0 on success, 2 on an error (printed as one line on stderr), 130 on Ctrl-C.
     """
-    code = _main(argv)
+    # A controller run in this process could crash it: a watcher says so if it does.
+    watch = CrashWatch() if argv is None and runs_a_controller_here(sys.argv[1:]) else None
+    try:
+        code = _main(argv)
+    finally:
+        if watch is not None:
+            watch.ended()
     if argv is None:
         _end_without_controller_threads(code)
     return code
