@@ -120,10 +120,14 @@ test: build dev-deps ros-deps ros2-deps ros2-peer browser-deps display-deps docs
 FUZZ_CASES ?= 20000
 FUZZ_CALLS ?= 5
 FUZZ_WORLD_RUNS ?= 200
+# The seed of the surface walk's hostile values: a new one each run, so that each run tries calls
+# the last did not (a fixed seed tries the same calls every run); printed, to run again.
+FUZZ_SEED ?= $(shell date +%s)
 
-fuzz: build dev-deps ## fuzz the readers (FUZZ_CASES inputs each), every public entry point (FUZZ_CALLS hostile calls each) and FUZZ_WORLD_RUNS mutated Webots worlds run whole
+fuzz: build dev-deps ## fuzz the readers (FUZZ_CASES inputs each), every public entry point (FUZZ_CALLS hostile calls each, drawn from FUZZ_SEED: a new seed each run) and FUZZ_WORLD_RUNS mutated Webots worlds run whole
 	PROPTEST_CASES=$(FUZZ_CASES) cargo test -p mazesim-core --release --test parser_fuzz --test wbt_fuzz
-	MAZESIM_SURFACE=all MAZESIM_SURFACE_CALLS=$(FUZZ_CALLS) $(BIN)/python -m pytest tests/test_public_surface.py
+	@echo "make fuzz: the surface walk's seed is $(FUZZ_SEED) (make fuzz FUZZ_SEED=$(FUZZ_SEED) runs it again)"
+	MAZESIM_SURFACE=all MAZESIM_SURFACE_CALLS=$(FUZZ_CALLS) MAZESIM_SURFACE_SEED=$(FUZZ_SEED) $(BIN)/python -m pytest tests/test_public_surface.py
 	MAZESIM_WORLD_RUNS=$(FUZZ_WORLD_RUNS) $(BIN)/python -m pytest -n 2 tests/webots/test_world_run_fuzz.py
 
 demo: build ## the shipped hierarchical navigator drives seed-maze to its goal; writes mazesim-demo/ (replay.html: watch it)
