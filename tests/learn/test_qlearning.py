@@ -171,3 +171,22 @@ def test_the_core_update_names_a_negative_index_and_ignores_an_unread_next_state
     # An episode's end reads no next state, so any number there is as good as another.
     update([0, 1], [0, -1], [0.9, 0.0])
     assert q[1, 1] == 1.0 and visits.sum() == 2
+
+
+def test_rewards_and_bootstrap_factors_out_of_range_are_refused_before_any_update() -> None:
+    from mazesim.learn.higher import HigherLearner, HigherLevel
+
+    q, visits = np.zeros((4, 3)), np.zeros((4, 3), dtype=np.int64)
+    for factor in (5.0, -0.1, math.nan):  # gamma ** tau is in [0, 1]; 5 made the table diverge
+        with pytest.raises(InvalidArgumentError, match="bootstrap factors in \\[0, 1\\]"):
+            batch_update(q, visits, [0], [0], [1.0], [1], [factor], LearningRate())
+    with pytest.raises(InvalidArgumentError, match="next_states as whole numbers, found 1.5"):
+        batch_update(q, visits, [0], [0], [1.0], [1.5], [0.0], LearningRate())
+    assert not q.any() and not visits.any()
+    # An episode's end reads no next state: -1 there is taken, as the core takes it.
+    batch_update(q, visits, [0], [0], [1.0], [-1], [0.0], LearningRate())
+    assert q[0, 0] > 0.0
+    learner = HigherLearner(HigherLevel([[1, 2]]), 2)
+    with pytest.raises(InvalidArgumentError, match="expected finite rewards, found nan"):
+        learner.reward([math.nan, 0.0])  # once stored, and refused only at the decision's end
+    assert not learner.earned.any()

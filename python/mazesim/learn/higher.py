@@ -152,8 +152,17 @@ class HigherLearner:
         self.earned = np.zeros(num_envs, dtype=np.float64)
 
     def reward(self, rewards: npt.ArrayLike) -> None:
-        """Adds one step's rewards to the open decisions."""
-        self.earned += np.asarray(rewards, dtype=np.float64)
+        """Adds one step's rewards to the open decisions.
+
+        Raises:
+            InvalidArgumentError: A reward is not finite (it would reach the table at the
+                decision's end), or there is not one per robot.
+        """
+        values = np.asarray(rewards, dtype=np.float64)
+        if not np.all(np.isfinite(values)):
+            found = values[~np.isfinite(values)].flat[0]
+            raise InvalidArgumentError(f"expected finite rewards, found {found}")
+        self.earned += values
 
     def decide(self, envs: npt.ArrayLike, states: npt.ArrayLike, options: npt.ArrayLike) -> None:
         """Closes the open decisions of ``envs`` (bootstrapping on ``states``) and opens new ones.

@@ -42,7 +42,7 @@ import numpy.typing as npt
 
 from mazesim._checks import MOST_ARRAY_VALUES
 from mazesim._core import q_batch_update
-from mazesim._sizes import index_array
+from mazesim._sizes import index_array, whole_array
 from mazesim.errors import InvalidArgumentError
 
 __all__ = [
@@ -151,8 +151,8 @@ def batch_update(
             by default): the value of a next state is the best of these.
 
     Raises:
-        InvalidArgumentError: The arrays differ in length, or a state or action is not a whole
-            number inside the table.
+        InvalidArgumentError: The arrays differ in length, a state or action is not a whole
+            number inside the table, a reward is not finite or a bootstrap factor not in [0, 1].
     """
     if not (q.flags.c_contiguous and visits.flags.c_contiguous and visits.shape == q.shape):
         raise InvalidArgumentError("expected C-contiguous Q and visit tables of one shape")
@@ -160,7 +160,9 @@ def batch_update(
     state_array = index_array(states, "states", num_states).ravel()
     action_array = index_array(actions, "actions", num_actions).ravel()
     count = state_array.size
-    following = index_array(next_states, "next_states", num_states).ravel()
+    # Whole numbers (1.5 is not a state); those an episode's end does not read (bootstrap 0)
+    # may be any, the others the core checks are inside the table.
+    following = whole_array(next_states, "next_states").ravel()
     if action_array.size != count or np.size(rewards) != count or following.size != count:
         raise InvalidArgumentError(
             f"expected as many actions, rewards and next_states as states ({count}), "
@@ -172,6 +174,11 @@ def batch_update(
     factors = np.ascontiguousarray(
         np.broadcast_to(np.asarray(bootstrap, dtype=np.float64).ravel(), (count,)), dtype=np.float64
     )
+    if not np.all((factors >= 0.0) & (factors <= 1.0)):  # NaN fails too
+        found = factors[~((factors >= 0.0) & (factors <= 1.0))][0]
+        raise InvalidArgumentError(
+            f"expected bootstrap factors in [0, 1] (gamma, gamma ** tau or 0), found {found}"
+        )
     mask = (
         np.ones(num_actions, dtype=bool)
         if allowed is None
