@@ -76,7 +76,9 @@ class HigherLevel:
         visits: The update counts, same shape; zeros by default.
 
     Raises:
-        InvalidArgumentError: The tables have the wrong shape.
+        InvalidArgumentError: The tables have the wrong shape, a checkpoint id is not a whole
+            number from 1 to :data:`MAX_CHECKPOINT_ID`, or a visit count is not a whole number
+            of 0 or more.
     """
 
     def __init__(
