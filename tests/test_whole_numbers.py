@@ -8,7 +8,7 @@ taken as another number. Two mechanisms make the next such argument right by con
   below fails on a function that hands one of its parameters to numpy with an integer dtype;
 - a parameter annotated as a list or tuple of ints (``tuple[int, int]``,
   ``Sequence[Sequence[int]]``) has its items checked before the call (``mazesim._checks``), as
-  a plain ``int`` parameter always had.
+  a plain ``int`` parameter always had, and so has a numpy array given for one.
 """
 
 from __future__ import annotations
@@ -134,6 +134,9 @@ def _size_and_groups(size: tuple[int, int], groups: Sequence[Sequence[int]] | No
         ((4, 4), [list(range(20)) + [0.5]], WRONG, "item 0: item 20"),
         ((4, [4]), None, WRONG, "size refused: item 1: expected int, found a list"),
         ((4, 4), [[1, [2]]], WRONG, "groups refused: item 0: item 1: expected int, found a list"),
+        ((4, 4), np.array([[1.0, 2.5]]), WRONG, "groups refused: expected ints, found a float 2.5"),
+        ((4, 4), np.array([[1.0, np.nan]]), WRONG, "groups refused: expected ints, found a float"),
+        (np.array([True, False]), None, WRONG, "size refused: expected ints, found an array of"),
         # A list nested 100,000 deep is read as deep as the annotation nests, no deeper.
         ((4, 4), [_nested(100_000)], WRONG, "groups refused: item 0: item 0: expected int"),
     ],
@@ -148,6 +151,7 @@ def test_the_items_of_a_list_of_ints_are_checked_before_the_call(
 def test_whole_items_are_taken_as_they_are() -> None:
     assert _size_and_groups((4, 5), [[1, 2], [3]]) == 26
     assert _size_and_groups((np.int64(2), 3.0)) == 6  # a whole float is the number it says
+    assert _size_and_groups(np.array([2.0, 3.0]), [np.array([1, 2])]) == 9
 
 
 def test_the_entry_points_that_once_cut_numbers_refuse_them() -> None:
@@ -167,7 +171,9 @@ def test_the_entry_points_that_once_cut_numbers_refuse_them() -> None:
     with pytest.raises(mazesim.InvalidArgumentError, match="events as whole numbers, found 0.5"):
         level.states([0], [0.5])
     q, visits = np.zeros((4, 3)), np.zeros((4, 3), np.int64)
-    with pytest.raises(mazesim.InvalidArgumentError, match="next_states as whole numbers, found nan"):
+    with pytest.raises(
+        mazesim.InvalidArgumentError, match="next_states as whole numbers, found nan"
+    ):
         batch_update(q, visits, [0], [0], [1.0], [np.nan], [0.9], LearningRate())
     with pytest.raises(mazesim.InvalidArgumentError, match="found 1, 1 and 2"):
         batch_update(q, visits, [0], [0], [1.0], [1, 2], [0.9], LearningRate())

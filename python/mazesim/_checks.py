@@ -535,6 +535,22 @@ def _another_int_item(value: Any, depth: int, budget: list[int]) -> tuple[str, A
     return None
 
 
+def _not_whole_array(array: np.ndarray[Any, Any]) -> str | None:
+    """Why a numpy array given for a list or tuple of ints is not whole numbers (a bool array, a
+    float one holding 4.5, NaN or an infinity), or None; ``int()`` would read its values as
+    other numbers without a word."""
+    if array.dtype.kind == "b":
+        return TypeRefusal(f"expected ints, found an array of dtype {array.dtype}")
+    if array.dtype.kind != "f" or array.size > MOST_ARRAY_VALUES:
+        return None  # ints, or a kind the call's own conversion refuses
+    with np.errstate(invalid="ignore"):
+        whole = np.isfinite(array) & (array == np.floor(array))
+    if whole.all():
+        return None
+    found = array[~whole].flat[0]
+    return TypeRefusal(f"expected ints, found {_describe(float(found))} in an array")
+
+
 def _plain_types(hint: Any) -> tuple[type, ...] | None:
     """The scalar types (of :data:`_SCALARS`) a value of ``hint`` may have without a closer
     look, or None when ``hint`` is one the scalar check leaves alone (``Any``, a choice of
@@ -743,6 +759,11 @@ class _Parameters:
         for (name, hint), value in zip(pairs, values):  # noqa: B905 - one value per pair
             if hint is not Any and isinstance(value, _CONTAINERS) and name in self.plain:
                 self.refuse(name, value, hint)  # a list for a number: C code may recurse into it
+            if name in self.int_items and isinstance(value, np.ndarray):
+                reason = _not_whole_array(value)
+                if reason is not None:
+                    where = self.func.__qualname__
+                    raise refusal_error(reason)(f"{where}: {name} refused: {reason}")
             if name in self.int_items and isinstance(value, (list, tuple)):
                 another = _another_int_item(value, self.int_items[name], [CHECKED_INT_ITEMS])
                 if another is not None:
@@ -808,6 +829,7 @@ def checked(func: Callable[..., Any], *, method: bool = False) -> Callable[..., 
     error, own, failures, text = InvalidArgumentError, MazesimError, _ARGUMENT_FAILURES, _TEXT
     wrong = WrongTypeError
     scalars_or_containers = _SCALARS + _CONTAINERS
+    with_arrays = (*scalars_or_containers, np.ndarray)  # an array for a list of ints
     tree = in_the_tree
     state = STATE  # per thread, whether a checked call is running
 
@@ -821,8 +843,9 @@ def checked(func: Callable[..., Any], *, method: bool = False) -> Callable[..., 
                 parameters.check_text(args, kwargs)
                 break
         if parameters.ints or parameters.plain or parameters.int_items:  # int(True), f"{None}"
+            kinds = with_arrays if parameters.int_items else scalars_or_containers
             for value in (*args, *kwargs.values()) if kwargs else args:
-                if isinstance(value, scalars_or_containers):
+                if isinstance(value, kinds):
                     parameters.check_scalars(args, kwargs)
                     break
         state.inside = True
