@@ -52,6 +52,8 @@ class CrashWatch:
 
     def __init__(self) -> None:
         self._pipe: int | None = None
+        if not hasattr(os, "fork"):  # a system without fork (Windows): the command runs unwatched
+            return
         try:
             read_end, write_end = os.pipe()
             pid = os.fork()
