@@ -137,6 +137,8 @@ def _size_and_groups(size: tuple[int, int], groups: Sequence[Sequence[int]] | No
         ((4, 4), np.array([[1.0, 2.5]]), WRONG, "groups refused: expected ints, found a float 2.5"),
         ((4, 4), np.array([[1.0, np.nan]]), WRONG, "groups refused: expected ints, found a float"),
         (np.array([True, False]), None, WRONG, "size refused: expected ints, found an array of"),
+        # A masked array's values are read whatever its mask (once an IndexError: all masked).
+        (np.ma.masked_array([4.5, 4.0], mask=True), None, WRONG, "found a float 4.5 in an array"),
         # A list nested 100,000 deep is read as deep as the annotation nests, no deeper.
         ((4, 4), [_nested(100_000)], WRONG, "groups refused: item 0: item 0: expected int"),
     ],

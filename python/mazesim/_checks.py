@@ -543,11 +543,12 @@ def _not_whole_array(array: np.ndarray[Any, Any]) -> str | None:
         return TypeRefusal(f"expected ints, found an array of dtype {array.dtype}")
     if array.dtype.kind != "f" or array.size > MOST_ARRAY_VALUES:
         return None  # ints, or a kind the call's own conversion refuses
+    values = np.asarray(array.data if isinstance(array, np.ma.MaskedArray) else array)
     with np.errstate(invalid="ignore"):
-        whole = np.isfinite(array) & (array == np.floor(array))
+        whole = np.isfinite(values) & (values == np.floor(values))
     if whole.all():
         return None
-    found = array[~whole].flat[0]
+    found = values[~whole].flat[0]
     return TypeRefusal(f"expected ints, found {_describe(float(found))} in an array")
 
 
