@@ -437,7 +437,8 @@ def test_a_maze_of_ten_metre_cells_is_still_taken() -> None:
 
 def _python_side_numbers() -> list[tuple[str, Callable[[], object]]]:
     """Numbers the Python side takes itself (not through the core's ranges), each given a value
-    its arithmetic cannot use, with the parameter the refusal must name."""
+    its arithmetic cannot use, with the parameter the refusal must name (NaN never reaches these
+    checks: the surface refuses it for any number, tests/test_nan_arguments.py)."""
     from mazesim.actions import wheel_speeds
     from mazesim.batch import cruise_step_length
     from mazesim.controllers import AvoidCollision, Explore
@@ -448,12 +449,12 @@ def _python_side_numbers() -> list[tuple[str, Callable[[], object]]]:
     robot = mazesim.RobotProfile.builtin("seed")
     return [
         ("control_step_ms", lambda: shortest_path_steps(world, 0.0)),
-        ("control_step_ms", lambda: cruise_step_length(robot, math.nan)),
+        ("control_step_ms", lambda: cruise_step_length(robot, math.inf)),
         ("position", lambda: StartJitter(position=-1.0)),
         ("yaw", lambda: StartJitter(yaw=math.inf)),
-        ("threshold", lambda: AvoidCollision(threshold=math.nan)),
-        ("turn", lambda: Explore(turn=math.nan)),
-        ("max_speed", lambda: wheel_speeds("00", math.nan)),
+        ("threshold", lambda: AvoidCollision(threshold=math.inf)),
+        ("turn", lambda: Explore(turn=-math.inf)),
+        ("max_speed", lambda: wheel_speeds("00", math.inf)),
         ("ray_length", lambda: SensorRays(world, robot, -1.0)),
     ]
 

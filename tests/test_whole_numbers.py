@@ -14,7 +14,7 @@ taken as another number. Two mechanisms make the next such argument right by con
 from __future__ import annotations
 
 import ast
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from pathlib import Path
 
 import numpy as np
@@ -33,14 +33,46 @@ INTEGER_TYPES = {
 PASSING_THROUGH = {"ravel", "asarray", "array", "ascontiguousarray", "atleast_1d", "reshape"}
 
 
-def _integer_dtype(node: ast.expr) -> bool:
-    if isinstance(node, ast.Attribute):
-        return node.attr in INTEGER_TYPES
-    if isinstance(node, ast.Name):
-        return node.id in INTEGER_TYPES
-    return isinstance(node, ast.Constant) and str(node.value).lstrip("<>=").startswith(
-        ("int", "uint", "i", "u")
-    )
+def dtype_of(types: set[str], prefixes: tuple[str, ...]) -> Callable[[ast.expr], bool]:
+    """Whether a dtype argument names one of ``types`` (``np.int64``, ``int``, ``"<i8"``)."""
+
+    def named(node: ast.expr) -> bool:
+        if isinstance(node, ast.Attribute):
+            return node.attr in types
+        if isinstance(node, ast.Name):
+            return node.id in types
+        return isinstance(node, ast.Constant) and str(node.value).lstrip("<>=").startswith(prefixes)
+
+    return named
+
+
+_integer_dtype = dtype_of(INTEGER_TYPES, ("int", "uint", "i", "u"))
+
+
+def conversions_of_parameters(source: str, dtype: Callable[[ast.expr], bool]) -> list[str]:
+    """``function(parameter) line N`` for each numpy conversion of a parameter to a type
+    ``dtype`` says yes to, in ``source``: ``np.asarray(p, dtype=np.int64)``,
+    ``np.array(np.ravel(p), dtype=int)``, ``p.astype(np.intp)``."""
+    found = []
+    for function in ast.walk(ast.parse(source)):
+        if not isinstance(function, (ast.FunctionDef, ast.AsyncFunctionDef)):
+            continue
+        arguments = function.args
+        every = arguments.posonlyargs + arguments.args + arguments.kwonlyargs
+        parameters = {a.arg for a in every} - {"self", "cls"}
+        for node in ast.walk(function):
+            if not (isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute)):
+                continue
+            converted = None
+            if node.func.attr in ("array", "asarray", "ascontiguousarray") and node.args:
+                dtypes = [k.value for k in node.keywords if k.arg == "dtype"] + node.args[1:2]
+                if dtypes and dtype(dtypes[0]):
+                    converted = _parameter_under(node.args[0], parameters)
+            elif node.func.attr == "astype" and node.args and dtype(node.args[0]):
+                converted = _parameter_under(node.func.value, parameters)
+            if converted is not None:
+                found.append(f"{function.name}({converted}) line {node.lineno}")
+    return found
 
 
 def _parameter_under(node: ast.expr, parameters: set[str]) -> str | None:
@@ -56,29 +88,8 @@ def _parameter_under(node: ast.expr, parameters: set[str]) -> str | None:
 
 
 def integer_conversions_of_parameters(source: str) -> list[str]:
-    """``function(parameter) line N`` for each numpy conversion of a parameter to an integer
-    type in ``source``: ``np.asarray(p, dtype=np.int64)``, ``np.array(np.ravel(p), dtype=int)``,
-    ``p.astype(np.intp)``."""
-    found = []
-    for function in ast.walk(ast.parse(source)):
-        if not isinstance(function, (ast.FunctionDef, ast.AsyncFunctionDef)):
-            continue
-        arguments = function.args
-        every = arguments.posonlyargs + arguments.args + arguments.kwonlyargs
-        parameters = {a.arg for a in every} - {"self", "cls"}
-        for node in ast.walk(function):
-            if not (isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute)):
-                continue
-            converted = None
-            if node.func.attr in ("array", "asarray", "ascontiguousarray") and node.args:
-                dtypes = [k.value for k in node.keywords if k.arg == "dtype"]
-                if dtypes and _integer_dtype(dtypes[0]):
-                    converted = _parameter_under(node.args[0], parameters)
-            elif node.func.attr == "astype" and node.args and _integer_dtype(node.args[0]):
-                converted = _parameter_under(node.func.value, parameters)
-            if converted is not None:
-                found.append(f"{function.name}({converted}) line {node.lineno}")
-    return found
+    """:func:`conversions_of_parameters` to an integer type."""
+    return conversions_of_parameters(source, _integer_dtype)
 
 
 def test_the_scan_finds_the_conversions_that_cut_fractions_silently() -> None:
@@ -97,12 +108,17 @@ def start(self, envs, episodes):
     ]
 
 
-def test_no_function_of_the_package_hands_a_parameter_to_numpy_as_integers() -> None:
-    found = {
+def conversions_in_package(dtype: Callable[[ast.expr], bool]) -> set[str]:
+    """:func:`conversions_of_parameters` in every module of the package, by file."""
+    return {
         f"{path.relative_to(PACKAGE)}: {where}"
         for path in sorted(PACKAGE.rglob("*.py"))
-        for where in integer_conversions_of_parameters(path.read_text(encoding="utf-8"))
+        for where in conversions_of_parameters(path.read_text(encoding="utf-8"), dtype)
     }
+
+
+def test_no_function_of_the_package_hands_a_parameter_to_numpy_as_integers() -> None:
+    found = conversions_in_package(_integer_dtype)
     assert not found, (
         "convert with mazesim._sizes.index_array (indices), whole_array (counts, events) or "
         f"seed_array (seeds), which refuse 1.5, NaN and out-of-range values: {sorted(found)}"

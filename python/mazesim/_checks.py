@@ -481,6 +481,8 @@ def _takes_int(hint: Any) -> bool:
 
 #: The types ``int()`` reads as ints, a value of which may be another number than the int.
 _READ_AS_INTS = (bool, float, np.bool_, np.floating)
+#: The types of a number that may be NaN.
+_FLOATS = (float, np.floating)
 #: The plain values a call may take without failing whatever their annotation says (``float()``
 #: reads True, an f-string reads None or 3 as a name): checked before the call.
 _SCALARS = (bool, np.bool_, int, float, type(None))
@@ -497,20 +499,56 @@ _PLAIN_TYPES: dict[Any, tuple[type, ...]] = {
 }
 
 
-def _int_item_depth(hint: Any) -> int:
-    """How deep ``hint`` (or its member besides None) nests sequences of ints: 1 for a list,
-    tuple or sequence of ints (``tuple[int, int]``), 2 for ``Sequence[Sequence[int]]``; 0 for
-    any other annotation."""
+def _item_depth(hint: Any, kind: type = int) -> int:
+    """How deep ``hint`` (or its member besides None) nests sequences of ``kind`` (ints, or
+    numbers: ``float``, which may be given as ints): 1 for a list, tuple or sequence of them
+    (``tuple[int, int]``), 2 for ``Sequence[Sequence[int]]``; 0 for any other annotation."""
     if typing.get_origin(hint) in _UNIONS:
         members = [m for m in typing.get_args(hint) if m is not type(None)]
-        return _int_item_depth(members[0]) if len(members) == 1 else 0
+        return _item_depth(members[0], kind) if len(members) == 1 else 0
     if typing.get_origin(hint) not in (list, tuple, abc.Sequence, abc.MutableSequence):
         return 0
     items = {a for a in typing.get_args(hint) if a is not Ellipsis}
-    if items == {int}:
+    if items == {kind} or kind is float and items == {float, int}:
         return 1
-    inner = {_int_item_depth(a) for a in items}
+    inner = {_item_depth(a, kind) for a in items}
     return 1 + inner.pop() if len(inner) == 1 and 0 not in inner else 0
+
+
+def _takes_float(hint: Any) -> bool:
+    """Whether ``hint`` is ``float`` or a union with ``float``."""
+    if hint is float:
+        return True
+    return typing.get_origin(hint) in _UNIONS and float in typing.get_args(hint)
+
+
+def _nan_item(value: Any, depth: int, budget: list[int]) -> str | None:
+    """The place (``"item 0: item 2"``) of the first NaN of a list or tuple of numbers nested
+    ``depth`` deep, or of a numpy array in its place; at most ``budget[0]`` items are read, the
+    budget shared by the levels."""
+    for index, item in enumerate(value):
+        if budget[0] <= 0:
+            return None
+        budget[0] -= 1
+        if isinstance(item, np.ndarray):
+            if _holds_nan(item):
+                return f"item {index}"
+        elif depth > 1 and isinstance(item, (list, tuple)):
+            inner = _nan_item(item, depth - 1, budget)
+            if inner is not None:
+                return f"item {index}: {inner}"
+        elif isinstance(item, _FLOATS) and item != item:
+            return f"item {index}"
+    return None
+
+
+def _holds_nan(array: np.ndarray[Any, Any]) -> bool:
+    """Whether a numpy array of floats (of at most :data:`MOST_ARRAY_VALUES`) holds a NaN, its
+    masked values too; an array of another kind is left to the call's own conversion."""
+    if array.dtype.kind not in "fc" or array.size > MOST_ARRAY_VALUES:
+        return False
+    values = np.asarray(array.data if isinstance(array, np.ma.MaskedArray) else array)
+    return bool(np.isnan(values).any())
 
 
 def _another_int_item(value: Any, depth: int, budget: list[int]) -> tuple[str, Any] | None:
@@ -609,7 +647,7 @@ def documented_argument(func: Callable[..., Any], name: str) -> str | None:
 class _Parameters:
     """The checks of one callable's parameters, read from its annotations at its first call."""
 
-    def __init__(self, func: Callable[..., Any], skip_first: bool) -> None:
+    def __init__(self, func: Callable[..., Any], skip_first: bool, takes_nan: bool = False) -> None:
         self.func = func
         self.skip_first = skip_first
         self.ready = False
@@ -628,12 +666,21 @@ class _Parameters:
         #: a float of 1.5 as, silently: checked before the call.
         self.ints: set[str] = set()
         #: The parameters annotated as lists or tuples of ints, by how deep they nest
-        #: (:func:`_int_item_depth`): ``int()`` would read their items as silently, so they
+        #: (:func:`_item_depth`): ``int()`` would read their items as silently, so they
         #: are checked before the call.
         self.int_items: dict[str, int] = {}
         #: The scalar types each plainly annotated parameter takes (:func:`_plain_types`): a
         #: bool, None or number of another type is refused before the call.
         self.plain: dict[str, tuple[type, ...]] = {}
+        #: The parameters annotated as numbers (``float``), and those annotated as lists or
+        #: tuples of numbers by how deep they nest: NaN, which every comparison answers False
+        #: and every sum carries on, is no number they take (refused before the call), unless
+        #: ``takes_nan`` (Webots' API, which answers NaN itself as Webots does).
+        self.takes_nan = takes_nan
+        self.numbers: set[str] = set()
+        self.number_items: dict[str, int] = {}
+        #: Whether any parameter is a list of ints or of numbers (an array may stand for one).
+        self.any_items = False
 
     def prepare(self) -> None:
         func = inspect.unwrap(self.func)
@@ -660,12 +707,18 @@ class _Parameters:
                 self.by_name[p.name] = hint
             if _takes_int(hint):
                 self.ints.add(p.name)
-            depth = _int_item_depth(hint)
+            depth = _item_depth(hint)
             if depth:
                 self.int_items[p.name] = depth
             plain = _plain_types(hint) if hint is not Any else None
             if plain is not None:
                 self.plain[p.name] = plain
+            if not self.takes_nan and _takes_float(hint):
+                self.numbers.add(p.name)
+            depth = 0 if self.takes_nan else _item_depth(hint, float)
+            if depth:
+                self.number_items[p.name] = depth
+        self.any_items = bool(self.int_items or self.number_items)
         for index, p in enumerate(parameters):
             most = _bound_of(hints.get(p.name, Any))
             if most is not None and not (index == 0 and self.skip_first):
@@ -773,6 +826,10 @@ class _Parameters:
                     raise refusal_error(reason)(
                         f"{self.func.__qualname__}: {name} refused: {place}: {reason}"
                     )
+            if name in self.numbers and isinstance(value, _FLOATS) and value != value:
+                self.refuse_nan(name, "")
+            if name in self.number_items:
+                self.refuse_nan_items(name, value)
             if hint is Any or not isinstance(value, _SCALARS):
                 continue
             if name in self.ints and (
@@ -783,6 +840,26 @@ class _Parameters:
             plain = self.plain.get(name)
             if plain is not None and type(value) not in plain:
                 self.refuse(name, value, hint)
+
+    def refuse_nan_items(self, name: str, value: Any) -> None:
+        """Refuses a list or tuple of numbers (or a numpy array in its place) holding NaN."""
+        if isinstance(value, np.ndarray):
+            place = "an item" if _holds_nan(value) else None
+        elif isinstance(value, (list, tuple)):
+            place = _nan_item(value, self.number_items[name], [CHECKED_INT_ITEMS])
+        else:
+            return
+        if place is not None:
+            self.refuse_nan(name, f"{place}: ")
+
+    def refuse_nan(self, name: str, place: str) -> None:
+        """Refuses NaN given for ``name`` (at ``place`` in it), saying what the parameter is
+        when the docstring says it (its range, its unit)."""
+        meaning = documented_argument(self.func, name)
+        raise InvalidArgumentError(
+            f"{self.func.__qualname__}: {name} refused: {place}expected a number, found NaN"
+            + (f"; {name}: {meaning}" if meaning else "")
+        )
 
     def refuse_text(self, name: str, value: str | bytes | bytearray, hint: Any) -> None:
         """:meth:`refuse` for text, remembering the last texts that fit (a controller asks for
@@ -819,17 +896,20 @@ class _Parameters:
             raise refusal_error(reason)(f"{self.func.__qualname__}: {name} refused: {reason}")
 
 
-def checked(func: Callable[..., Any], *, method: bool = False) -> Callable[..., Any]:
+def checked(
+    func: Callable[..., Any], *, method: bool = False, takes_nan: bool = False
+) -> Callable[..., Any]:
     """``func`` with its arguments checked against its annotations before each call (``method``:
-    its first parameter, ``self`` or ``cls``, is not checked). The wrapper runs in ``func``'s
+    its first parameter, ``self`` or ``cls``, is not checked; ``takes_nan``: a parameter annotated
+    as a number may be given NaN, which ``func`` answers itself). The wrapper runs in ``func``'s
     module's globals, so doctest and ``inspect`` see it as that module's function."""
     if is_checked(func):
         return func
-    parameters = _Parameters(func, method)
+    parameters = _Parameters(func, method, takes_nan)
     # The wrapper runs in func's globals: everything it uses is bound here.
     error, own, failures, text = InvalidArgumentError, MazesimError, _ARGUMENT_FAILURES, _TEXT
     wrong = WrongTypeError
-    scalars_or_containers = _SCALARS + _CONTAINERS
+    scalars_or_containers = (*_SCALARS, np.floating, *_CONTAINERS)
     with_arrays = (*scalars_or_containers, np.ndarray)  # an array for a list of ints
     tree = in_the_tree
     state = STATE  # per thread, whether a checked call is running
@@ -843,8 +923,9 @@ def checked(func: Callable[..., Any], *, method: bool = False) -> Callable[..., 
             if isinstance(value, text):  # float("64") would take text for a number: check now
                 parameters.check_text(args, kwargs)
                 break
-        if parameters.ints or parameters.plain or parameters.int_items:  # int(True), f"{None}"
-            kinds = with_arrays if parameters.int_items else scalars_or_containers
+        if parameters.ints or parameters.plain or parameters.any_items or parameters.numbers:
+            # int(True), f"{None}", NaN for a number
+            kinds = with_arrays if parameters.any_items else scalars_or_containers
             for value in (*args, *kwargs.values()) if kwargs else args:
                 if isinstance(value, kinds):
                     parameters.check_scalars(args, kwargs)
@@ -945,27 +1026,30 @@ def _guard_class(cls: type) -> None:
 
     if issubclass(cls, enum.Enum):
         return
+    # A class with ``_takes_nan`` answers NaN itself (Webots' API, as Webots does): its number
+    # parameters are not refused NaN.
+    nan = bool(getattr(cls, "_takes_nan", False))
     inherited = cls.__init__
     if "__init__" not in vars(cls) and inspect.isfunction(inherited):
-        cls.__init__ = checked(inherited, method=True)  # type: ignore[method-assign]
+        cls.__init__ = checked(inherited, method=True, takes_nan=nan)  # type: ignore[method-assign]
     elif (
         inherited is object.__init__ and cls.__new__ is object.__new__ and not cls.__subclasses__()
     ):
-        cls.__init__ = checked(_refuse_any_argument(cls), method=True)  # type: ignore[method-assign]
+        cls.__init__ = checked(_refuse_any_argument(cls), method=True, takes_nan=nan)  # type: ignore[method-assign]
     if inspect.isabstract(cls) and "__new__" not in vars(cls) and cls.__new__ is object.__new__:
         cls.__new__ = _refuse_abstract  # type: ignore[method-assign]
     made_by = getattr(vars(cls).get("__new__"), "__func__", None)
     if inspect.isfunction(made_by):  # a NamedTuple's constructor
-        cls.__new__ = staticmethod(checked(made_by, method=True))  # type: ignore[method-assign]
+        cls.__new__ = staticmethod(checked(made_by, method=True, takes_nan=nan))  # type: ignore[method-assign]
     for name, raw in list(vars(cls).items()):
         if name.startswith("_") and name != "__init__":
             continue
         if isinstance(raw, staticmethod):
-            setattr(cls, name, staticmethod(checked(raw.__func__)))
+            setattr(cls, name, staticmethod(checked(raw.__func__, takes_nan=nan)))
         elif isinstance(raw, classmethod):
-            setattr(cls, name, classmethod(checked(raw.__func__, method=True)))
+            setattr(cls, name, classmethod(checked(raw.__func__, method=True, takes_nan=nan)))
         elif inspect.isfunction(raw):
-            setattr(cls, name, checked(raw, method=True))
+            setattr(cls, name, checked(raw, method=True, takes_nan=nan))
     for name, raw in _inherited_from_private_bases(cls):
         # A copy named as cls's own method, so that a refusal names the class the user has.
         own = types.FunctionType(
@@ -974,7 +1058,7 @@ def _guard_class(cls: type) -> None:
         functools.update_wrapper(own, raw)
         own.__qualname__ = f"{cls.__qualname__}.{name}"
         own.__kwdefaults__ = raw.__kwdefaults__
-        setattr(cls, name, checked(own, method=True))
+        setattr(cls, name, checked(own, method=True, takes_nan=nan))
 
 
 def _inherited_from_private_bases(cls: type) -> list[tuple[str, Callable[..., Any]]]:

@@ -27,6 +27,7 @@ __all__ = [
     "bounded_array",
     "bounded_list",
     "index_array",
+    "number_array",
     "seed_array",
     "size_of",
     "whole_array",
@@ -135,6 +136,27 @@ def whole_array(
             more than ``most``.
     """
     return _whole_numbers(value, name, low, high + 1, most, np.int64)
+
+
+def number_array(
+    value: Any, name: str, dtype: npt.DTypeLike = np.float64, *, nan_means: str = ""
+) -> npt.NDArray[Any]:
+    """``value`` as an array of ``dtype`` numbers, refused when it holds NaN, unless
+    ``nan_means`` says what a NaN stands for there (a gap in a path, a reading not yet taken):
+    numpy takes NaN in without a word, and every comparison after it answers False, so a range
+    check downstream lets it through and a sum carries it on. Infinities are each function's own
+    to take or refuse.
+
+    Raises:
+        InvalidArgumentError: ``value`` holds a NaN where none is meant.
+        TypeError, ValueError: numpy cannot read ``value`` as numbers (at the public surface,
+            :mod:`mazesim._checks` turns it into a refusal naming the argument).
+    """
+    array = np.asarray(value, dtype=dtype)  # numpy's error: the surface check names the argument
+    held = getattr(getattr(value, "dtype", None), "kind", "f")  # bools and ints hold no NaN
+    if not nan_means and held in "fcO" and array.dtype.kind in "fc" and np.isnan(array).any():
+        raise InvalidArgumentError(f"expected {name} as numbers, found NaN")
+    return array
 
 
 def seed_array(value: Any, name: str, most: int) -> npt.NDArray[np.uint64]:

@@ -13,6 +13,7 @@ from __future__ import annotations
 import numpy as np
 import numpy.typing as npt
 
+from mazesim._sizes import number_array
 from mazesim.errors import InvalidArgumentError, _bounded_number
 
 __all__ = ["AvoidCollision", "Explore", "FollowLine"]
@@ -69,7 +70,7 @@ class AvoidCollision:
         Raises:
             InvalidArgumentError: The readings are not of shape (8,).
         """
-        readings = np.asarray(distance_sensors, dtype=np.float64)
+        readings = number_array(distance_sensors, "distance_sensors")
         if readings.shape != (8,):
             raise InvalidArgumentError(
                 f"AvoidCollision expects the 8 readings ps0..ps7, shape (8,); "
@@ -101,7 +102,7 @@ class AvoidCollision:
         Raises:
             InvalidArgumentError: The readings are not of shape (N, 8).
         """
-        readings = np.asarray(distance_sensors, dtype=np.float64)
+        readings = number_array(distance_sensors, "distance_sensors")
         if readings.ndim != 2 or readings.shape[1] != 8:
             raise InvalidArgumentError(
                 f"AvoidCollision.batch expects readings of shape (N, 8); "
@@ -124,7 +125,7 @@ FRONT, BACK, LEFT, RIGHT, LEFT_FRONT, RIGHT_FRONT = range(6)
 
 def _rows(values: npt.ArrayLike, width: int, who: str) -> npt.NDArray[np.float64]:
     """Readings of N robots as a float64 (N, width) array, or an error naming ``who``."""
-    readings = np.asarray(values, dtype=np.float64)
+    readings = number_array(values, f"{who}'s readings")
     if readings.ndim != 2 or readings.shape[1] != width:
         raise InvalidArgumentError(
             f"{who}.batch expects readings of shape (N, {width}); found shape {readings.shape}"
@@ -134,7 +135,7 @@ def _rows(values: npt.ArrayLike, width: int, who: str) -> npt.NDArray[np.float64
 
 def _row(values: npt.ArrayLike, width: int, who: str, names: str) -> npt.NDArray[np.float64]:
     """Readings of one robot as a float64 (width,) array, or an error naming ``who``."""
-    readings = np.asarray(values, dtype=np.float64)
+    readings = number_array(values, f"{who}'s readings")
     if readings.shape != (width,):
         raise InvalidArgumentError(
             f"{who} expects the {width} readings {names}, shape ({width},); "

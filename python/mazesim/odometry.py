@@ -23,6 +23,7 @@ import math
 import numpy as np
 import numpy.typing as npt
 
+from mazesim._sizes import number_array
 from mazesim.errors import InvalidArgumentError, _shown
 
 __all__ = ["advance", "wrap_angle"]
@@ -35,7 +36,7 @@ def wrap_angle(angle: npt.ArrayLike) -> npt.NDArray[np.float64]:
         InvalidArgumentError: An angle is not finite (infinity has no direction: numpy's
             remainder would make it NaN with a warning).
     """
-    array = np.asarray(angle, dtype=np.float64)
+    array = number_array(angle, "angle", nan_means="refused below, with infinities")
     if not np.isfinite(array).all():
         found = float(array[~np.isfinite(array)].flat[0])
         raise InvalidArgumentError(f"expected finite angles in radians, found {_shown(found)}")
@@ -60,8 +61,8 @@ def advance(
         InvalidArgumentError: A travel is not finite, or the axle length not more than 0: the
             poses are left as they were.
     """
-    left_travel = np.asarray(left, dtype=np.float64)
-    right_travel = np.asarray(right, dtype=np.float64)
+    left_travel = number_array(left, "left", nan_means="refused below, with infinities")
+    right_travel = number_array(right, "right", nan_means="refused below, with infinities")
     for travel in (left_travel, right_travel):
         if not np.all(np.isfinite(travel)):
             found = travel[~np.isfinite(travel)].flat[0]

@@ -27,6 +27,7 @@ from matplotlib.patches import Circle, FancyArrow, Patch, Polygon
 from matplotlib.path import Path
 
 from mazesim._figures import save_figure
+from mazesim._sizes import number_array
 from mazesim.errors import InvalidArgumentError
 from mazesim.render.topdown import _number, _pair
 
@@ -284,8 +285,8 @@ def trajectory_limits(
     """The extent of a trajectory picture, (xmin, xmax, ymin, ymax): the world's walls and the
     whole path, at least :data:`MIN_PICTURE_SPAN` across (a world without walls is framed by the
     path alone); None without a finite point."""
-    path_x = np.asarray(xs, dtype=np.float64).ravel()
-    path_y = np.asarray(ys, dtype=np.float64).ravel()
+    path_x = number_array(xs, "xs", nan_means="a gap in the path").ravel()
+    path_y = number_array(ys, "ys", nan_means="a gap in the path").ravel()
     finite = np.isfinite(path_x) & np.isfinite(path_y)
     if not finite.any():
         return None
@@ -373,8 +374,8 @@ def save_trajectory_png(
     Raises:
         InvalidArgumentError: ``xs`` and ``ys`` differ in length.
     """
-    path_x = np.asarray(xs, dtype=np.float64).ravel()
-    path_y = np.asarray(ys, dtype=np.float64).ravel()
+    path_x = number_array(xs, "xs", nan_means="a gap in the path").ravel()
+    path_y = number_array(ys, "ys", nan_means="a gap in the path").ravel()
     if path_x.shape != path_y.shape:
         raise InvalidArgumentError(
             f"a trajectory needs as many x as y coordinates; found {path_x.size} and {path_y.size}"
@@ -408,7 +409,7 @@ def save_trajectory_png(
             label="path end",
         )
     if collisions is not None:
-        contacts = np.asarray(collisions, dtype=np.float64).reshape(-1, 2)
+        contacts = number_array(collisions, "collisions").reshape(-1, 2)
         if len(contacts):
             extra += ax.plot(
                 contacts[:, 0],

@@ -175,8 +175,10 @@ def test_floor_band_and_threshold_are_checked() -> None:
 @pytest.mark.parametrize("number", [math.nan, math.inf, -math.inf])
 @pytest.mark.parametrize("name", ["bit_threshold", "floor_low", "floor_high", "floor_distance"])
 def test_a_decoder_s_numbers_must_be_finite(name: str, number: float) -> None:
-    # NaN fails every comparison, so a band check alone let it through.
-    with pytest.raises(InvalidArgumentError, match=f"expected {name} a finite number"):
+    # NaN fails every comparison, so a band check alone let it through (now the surface check
+    # refuses NaN for any number before the decoder's own check of a finite one).
+    words = f"expected {name} a finite number|{name} refused: expected a number, found NaN"
+    with pytest.raises(InvalidArgumentError, match=words):
         Alg7Decoder(DEFAULT_BOOK, **{name: number})
 
 
@@ -194,7 +196,7 @@ def test_wheel_encoders_refuse_a_resolution_or_step_that_is_not_finite(
 ) -> None:
     robot = mazesim.RobotProfile.builtin("e-puck")
     arguments = {"control_step_ms": 64.0, keyword: number}
-    with pytest.raises(InvalidArgumentError, match="finite"):
+    with pytest.raises(InvalidArgumentError, match="finite|expected a number, found NaN"):
         WheelEncoders(robot, 1, **arguments)
 
 

@@ -325,6 +325,32 @@ def registered_name_parameters(target: Callable[..., Any]) -> tuple[str, ...]:
     )
 
 
+#: What a parameter annotated as a number (``float``, alone or in a union) is given, and one
+#: annotated as a list or tuple of numbers: NaN, which no comparison catches and every sum
+#: carries on, is refused by the surface check (``mazesim._checks``) unless the class is Webots'
+#: API (``_takes_nan``: it answers NaN as Webots does). Found by annotation, so that a new
+#: function's number parameter is walked with NaN by construction.
+NUMBER_VALUES = ("nan",)
+NUMBER_LIST_VALUES = ("non_finite_list",)
+
+
+def number_parameters(target: Callable[..., Any]) -> tuple[tuple[str, ...], tuple[str, ...]]:
+    """The parameters of ``target`` (a class: of its constructor) annotated as numbers, and
+    those annotated as lists or tuples of numbers; none for Webots' API."""
+    from mazesim._checks import _item_depth, _takes_float
+
+    if getattr(target, "_takes_nan", False) or getattr(
+        getattr(target, "__self__", None), "_takes_nan", False
+    ):
+        return (), ()
+    if inspect.isclass(target):
+        target = getattr(target, "__init__", target)
+    hints = {n: h for n, h in annotations_of(target).items() if n != "return"}
+    numbers = tuple(name for name, hint in hints.items() if _takes_float(hint))
+    lists = tuple(name for name, hint in hints.items() if _item_depth(hint, float))
+    return numbers, lists
+
+
 def refusals_of(entry: EntryPoint) -> tuple[MustRefuse, ...]:
     """The refusals ``entry`` must make: its own in :data:`MUST_REFUSE`, and one for each of its
     parameters named in :data:`MUST_REFUSE_BY_PARAMETER` or annotated as a registered name
@@ -337,6 +363,8 @@ def refusals_of(entry: EntryPoint) -> tuple[MustRefuse, ...]:
             if name in entry.parameters
         },
         **dict.fromkeys(entry.named, REGISTERED_NAME_VALUES),
+        **dict.fromkeys(entry.numbers, NUMBER_VALUES),
+        **dict.fromkeys(entry.number_lists, NUMBER_LIST_VALUES),
     }
     by_name = tuple(
         MustRefuse({}, {name: keys})
@@ -366,6 +394,9 @@ class EntryPoint:
     any_keyword: bool = False
     #: Those annotated :data:`mazesim.errors.RegisteredName`.
     named: tuple[str, ...] = field(default=())
+    #: Those annotated as numbers, and as lists of numbers (:func:`number_parameters`).
+    numbers: tuple[str, ...] = field(default=())
+    number_lists: tuple[str, ...] = field(default=())
 
 
 def _modules() -> Iterator[Any]:
@@ -417,7 +448,9 @@ def _public(module: Any) -> Iterator[tuple[str, Any]]:
         yield name, obj
 
 
-def _signature(target: Callable[..., Any], skip_first: bool) -> EntryPoint | None:
+def _signature(
+    target: Callable[..., Any], skip_first: bool, owner: type | None = None
+) -> EntryPoint | None:
     try:
         params = list(inspect.signature(target).parameters.values())
     except (TypeError, ValueError):
@@ -425,6 +458,8 @@ def _signature(target: Callable[..., Any], skip_first: bool) -> EntryPoint | Non
     if skip_first and params and params[0].name in ("self", "cls"):
         params = params[1:]
     usable = [p for p in params if p.kind not in (p.VAR_POSITIONAL, p.VAR_KEYWORD)]
+    names = {p.name for p in usable}
+    numbers, lists = ((), ()) if getattr(owner, "_takes_nan", False) else number_parameters(target)
     return EntryPoint(
         "",
         tuple(p.name for p in usable),
@@ -435,9 +470,9 @@ def _signature(target: Callable[..., Any], skip_first: bool) -> EntryPoint | Non
         ),
         any_positional=any(p.kind is p.VAR_POSITIONAL for p in params),
         any_keyword=any(p.kind is p.VAR_KEYWORD for p in params),
-        named=tuple(
-            name for name in registered_name_parameters(target) if name in {p.name for p in usable}
-        ),
+        named=tuple(name for name in registered_name_parameters(target) if name in names),
+        numbers=tuple(name for name in numbers if name in names),
+        number_lists=tuple(name for name in lists if name in names),
     )
 
 
@@ -463,9 +498,9 @@ def python_entry_points() -> list[EntryPoint]:
                     continue
                 if isinstance(value, (staticmethod, classmethod)):
                     target = getattr(obj, member)
-                    entry = _signature(target, False)
+                    entry = _signature(target, False, obj)
                 elif inspect.isfunction(value) or inspect.ismethoddescriptor(value):
-                    entry = _signature(value, True)
+                    entry = _signature(value, True, obj)
                 else:
                     continue
                 method = f"{path}.{member}"

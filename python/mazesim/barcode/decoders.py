@@ -34,6 +34,7 @@ from typing import Any, ClassVar
 import numpy as np
 import numpy.typing as npt
 
+from mazesim._sizes import number_array
 from mazesim.barcode.codebook import ARRIVAL, CodeBook
 from mazesim.errors import InvalidArgumentError, RegisteredName, WrongTypeError, _a_type
 
@@ -395,8 +396,8 @@ class RobustDecoder(Decoder):
         count = len(values)
         if before is None or after is None:
             return Reading(None, None, "", count, "the pass over the code has no start or end")
-        entry = 0.5 * (np.asarray(before, dtype=np.float64) + positions[0])
-        exit_ = 0.5 * (positions[-1] + np.asarray(after, dtype=np.float64))
+        entry = 0.5 * (number_array(before, "before", nan_means="no position known") + positions[0])
+        exit_ = 0.5 * (positions[-1] + number_array(after, "after", nan_means="no position known"))
         chord = exit_ - entry
         chord_length = float(math.hypot(chord[0], chord[1]))
         bars = self.book.code_length

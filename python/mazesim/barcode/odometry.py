@@ -17,6 +17,7 @@ import numpy as np
 import numpy.typing as npt
 
 from mazesim._core import RobotProfile
+from mazesim._sizes import number_array
 from mazesim.errors import InvalidArgumentError, _shown
 
 __all__ = ["ENCODER_RESOLUTION", "Odometry", "WheelEncoders", "barcode_sensor_index"]
@@ -43,7 +44,7 @@ def barcode_sensor_index(robot: RobotProfile) -> int:
 
 
 def _as_rows(values: npt.ArrayLike, count: int, what: str) -> npt.NDArray[np.float64]:
-    rows = np.asarray(values, dtype=np.float64)
+    rows = number_array(values, what)
     if rows.shape == (2,) and count == 1:
         rows = rows.reshape(1, 2)
     if rows.shape != (count, 2):
@@ -95,7 +96,7 @@ class WheelEncoders:
 
     def step(self, actions: npt.ArrayLike) -> None:
         """Adds one control step of wheel speeds ``actions`` (N, 2), rad/s, left then right."""
-        speeds = _as_rows(np.asarray(actions, dtype=np.float32), self.num_envs, "actions")
+        speeds = _as_rows(number_array(actions, "actions", np.float32), self.num_envs, "actions")
         self._angles += np.clip(speeds, -self.max_wheel_speed, self.max_wheel_speed) * (
             self.control_step
         )

@@ -13,6 +13,7 @@ import numpy as np
 import numpy.typing as npt
 
 from mazesim._core import RobotProfile, Simulator
+from mazesim._sizes import number_array
 from mazesim.barcode.decoders import Decoder, Reading
 from mazesim.barcode.odometry import Odometry, _as_mask, barcode_sensor_index
 from mazesim.errors import InvalidArgumentError, WrongTypeError, _a_type, _shown
@@ -140,7 +141,7 @@ class BatchBarcodeReader:
         Returns:
             (robot index, reading) for every robot whose sensor just left a code, in index order.
         """
-        values = np.asarray(ground, dtype=np.float64).reshape(-1)
+        values = number_array(ground, "ground").reshape(-1)
         if values.shape != (self.num_envs,):
             raise InvalidArgumentError(
                 f"expected ground readings of shape ({self.num_envs},), found {values.shape}"

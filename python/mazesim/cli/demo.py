@@ -18,6 +18,7 @@ import time
 from typing import Any, TextIO
 
 from mazesim._paths import make_output_folder, output_files, refuse_overwriting_inputs
+from mazesim._sizes import number_array
 from mazesim.cli._args import add_out_folder, add_seed_option, positive_seconds
 from mazesim.cli._help import examples
 from mazesim.cli.progress import add_progress_option, progress_display
@@ -55,8 +56,7 @@ def goal_summary(world: Any, xs: Any, ys: Any, step_s: float) -> dict[str, Any]:
         return {"goal_reached": None, "goal_time_s": None}
     goal_x, goal_y, radius = world.goal
     inside = np.flatnonzero(
-        np.hypot(np.asarray(xs, dtype=float) - goal_x, np.asarray(ys, dtype=float) - goal_y)
-        <= radius
+        np.hypot(number_array(xs, "xs") - goal_x, number_array(ys, "ys") - goal_y) <= radius
     )
     first = float(inside[0] * step_s) if inside.size else None
     return {"goal_reached": first is not None, "goal_time_s": first}

@@ -37,6 +37,7 @@ from typing import Any, Protocol
 import numpy as np
 import numpy.typing as npt
 
+from mazesim._sizes import number_array
 from mazesim.errors import InvalidArgumentError, RegisteredName, _known_name, _shown
 
 __all__ = [
@@ -136,7 +137,9 @@ class CellAgent:
 
     def act(self, observation: npt.ArrayLike) -> npt.NDArray[np.float32]:
         """The wheel speeds (left, right, fractions of the motor limit) for ``observation``."""
-        values = np.asarray(observation, dtype=np.float64)
+        values = number_array(
+            observation, "observation", nan_means="refused below, with infinities"
+        )
         if values.shape != (self._width,) or not np.isfinite(values).all():
             found = f"shape {values.shape}" if values.shape != (self._width,) else "NaN or infinity"
             raise InvalidArgumentError(

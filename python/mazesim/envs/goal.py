@@ -30,6 +30,7 @@ from gymnasium.vector.utils import batch_space
 
 from mazesim._core import World
 from mazesim._hot_paths import checks_own_arguments
+from mazesim._sizes import number_array
 from mazesim.envs.maze_env import EPuckMazeEnv
 from mazesim.envs.options import DEFAULT_MAX_EPISODE_STEPS, EnvOptions
 from mazesim.envs.vector import EPuckMazeVectorEnv
@@ -335,7 +336,7 @@ class MazeGoalVectorEnv(_MazeAttributes, VectorEnv[Observation, Any, Any]):
         """The distance of each achieved goal to its desired goal, in float64 as
         :meth:`MazeGoalEnv.step` computes it."""
         desired = self._discs[:, :2].astype(np.float32).astype(np.float64)
-        delta = achieved.astype(np.float64) - desired
+        delta = number_array(achieved, "achieved") - desired
         return np.sqrt(delta[:, 0] * delta[:, 0] + delta[:, 1] * delta[:, 1])
 
     def _observations(
@@ -343,7 +344,7 @@ class MazeGoalVectorEnv(_MazeAttributes, VectorEnv[Observation, Any, Any]):
     ) -> Observation:
         return {
             "observation": observations,
-            "achieved_goal": np.ascontiguousarray(achieved, dtype=np.float32),
+            "achieved_goal": np.ascontiguousarray(number_array(achieved, "achieved", np.float32)),
             "desired_goal": self._discs[:, :2].astype(np.float32),
         }
 
@@ -389,8 +390,10 @@ def _goal_reward(
     achieved_goal: npt.ArrayLike, desired_goal: npt.ArrayLike, radius: float, reward_type: str
 ) -> npt.NDArray[np.float64] | float:
     """:meth:`MazeGoalEnv.compute_reward`."""
-    achieved = np.asarray(achieved_goal, dtype=np.float64)
-    desired = np.asarray(desired_goal, dtype=np.float64)
+    achieved = number_array(
+        achieved_goal, "achieved_goal", nan_means="refused below, with infinities"
+    )
+    desired = number_array(desired_goal, "desired_goal", nan_means="refused below, with infinities")
     for name, goals in (("achieved_goal", achieved), ("desired_goal", desired)):
         if goals.shape[-1:] != (2,) or not np.isfinite(goals).all():
             found = f"shape {goals.shape}" if goals.shape[-1:] != (2,) else "NaN or infinity"

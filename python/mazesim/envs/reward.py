@@ -35,6 +35,7 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
+from mazesim._sizes import number_array
 from mazesim.errors import InvalidArgumentError, _shown
 from mazesim.maze import GoalDistance, PathDistanceTable
 
@@ -78,6 +79,6 @@ def step_reward(
     """The reward of one control step for each environment (see the module's description)."""
     return (
         weights.progress * (before - after)
-        - weights.collision * colliding.astype(np.float64)
-        + weights.goal * reached.astype(np.float64)
+        - weights.collision * number_array(colliding, "colliding")
+        + weights.goal * number_array(reached, "reached")
     )

@@ -27,7 +27,7 @@ from collections.abc import Sequence
 import numpy as np
 import numpy.typing as npt
 
-from mazesim._sizes import index_array, whole_array
+from mazesim._sizes import index_array, number_array, whole_array
 from mazesim.errors import InvalidArgumentError
 from mazesim.learn import qlearning
 from mazesim.learn.subtasks import NUM_SUBTASKS
@@ -95,7 +95,7 @@ class HigherLevel:
             raise InvalidArgumentError("expected the checkpoints of at least one world")
         self.num_states = max(1, 2 * max(len(ids) for ids in self.checkpoint_ids))
         shape = (len(self.checkpoint_ids), self.num_states, NUM_SUBTASKS)
-        self.q = np.zeros(shape) if q is None else np.array(q, dtype=np.float64)
+        self.q = np.zeros(shape) if q is None else np.array(number_array(q, "q"))
         self.visits = (
             np.zeros(shape, dtype=np.int64)
             if visits is None
@@ -160,7 +160,7 @@ class HigherLearner:
             InvalidArgumentError: A reward is not finite (it would reach the table at the
                 decision's end), or there is not one per robot.
         """
-        values = np.asarray(rewards, dtype=np.float64)
+        values = number_array(rewards, "rewards", nan_means="refused below, with infinities")
         if not np.all(np.isfinite(values)):
             found = values[~np.isfinite(values)].flat[0]
             raise InvalidArgumentError(f"expected finite rewards, found {found}")

@@ -26,7 +26,7 @@ import numpy as np
 import numpy.typing as npt
 
 from mazesim._core import Navigator, RobotProfile
-from mazesim._sizes import index_array, whole_array
+from mazesim._sizes import index_array, number_array, whole_array
 from mazesim.actions import ACTION_CODES, WHEEL_SPEED_FRACTIONS
 from mazesim.errors import InvalidArgumentError
 from mazesim.learn.discretise import NUM_SENSORS, volts_to_cm
@@ -99,14 +99,14 @@ class HierarchicalPolicy:
         self.chooser = chooser
         self.hold_heading = hold_heading
         self.navigator = Navigator(
-            np.ascontiguousarray(lower_q, dtype=np.float64), self.num_envs, hold_heading
+            np.ascontiguousarray(number_array(lower_q, "lower_q")), self.num_envs, hold_heading
         )
         self.record = StepRecord(self.num_envs)
 
     def reset(self, envs: npt.ArrayLike, poses: npt.ArrayLike) -> None:
         """Starts robots ``envs`` afresh, in "Corridors and Corners", at their poses."""
         robots = np.ascontiguousarray(index_array(envs, "envs", self.num_envs).ravel())
-        self.navigator.reset(robots, np.ascontiguousarray(poses, dtype=np.float64))
+        self.navigator.reset(robots, np.ascontiguousarray(number_array(poses, "poses")))
 
     def subtask_arrays(self) -> dict[str, npt.NDArray[Any]]:
         """Each robot's running sub-task as :meth:`mazesim.BatchSimulator.run` takes them
@@ -143,12 +143,12 @@ class HierarchicalPolicy:
         events: npt.ArrayLike,
     ) -> npt.NDArray[np.int64]:
         """:meth:`act` from the six distances in cm of each robot, ``(N, 6)``."""
-        pose_rows = np.ascontiguousarray(poses, dtype=np.float64)
+        pose_rows = np.ascontiguousarray(number_array(poses, "poses"))
         event = whole_array(events, "events")
         record = self.record
-        record.distances_cm = np.ascontiguousarray(distances_cm, dtype=np.float64).reshape(
-            -1, NUM_SENSORS
-        )
+        record.distances_cm = np.ascontiguousarray(
+            number_array(distances_cm, "distances_cm")
+        ).reshape(-1, NUM_SENSORS)
         record.event = event
         record.chosen[:] = -1
         at_event = np.flatnonzero(event != 0)
@@ -213,7 +213,7 @@ class DeadReckoningNavigator:
     def act(self, distances_cm: npt.ArrayLike, checkpoint: int) -> str:
         """The action code for six distances in cm (front, back, left, right, left-front,
         right-front) and the checkpoint event of the last step (+id, -id or 0)."""
-        distances = np.asarray(distances_cm, dtype=np.float64).reshape(1, NUM_SENSORS)
+        distances = number_array(distances_cm, "distances_cm").reshape(1, NUM_SENSORS)
         action = int(
             self.policy.act_on_distances(distances, self.pose, np.array([int(checkpoint)]))[0]
         )

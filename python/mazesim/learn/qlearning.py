@@ -42,7 +42,7 @@ import numpy.typing as npt
 
 from mazesim._checks import MOST_ARRAY_VALUES
 from mazesim._core import q_batch_update
-from mazesim._sizes import index_array, whole_array
+from mazesim._sizes import index_array, number_array, whole_array
 from mazesim.errors import InvalidArgumentError
 
 __all__ = [
@@ -170,9 +170,13 @@ def batch_update(
         )
     if count == 0:
         return
-    reward_array = np.ascontiguousarray(np.ravel(rewards), dtype=np.float64)
+    reward_array = np.ascontiguousarray(number_array(rewards, "rewards").ravel())
     factors = np.ascontiguousarray(
-        np.broadcast_to(np.asarray(bootstrap, dtype=np.float64).ravel(), (count,)), dtype=np.float64
+        np.broadcast_to(
+            number_array(bootstrap, "bootstrap", nan_means="refused below, out of [0, 1]").ravel(),
+            (count,),
+        ),
+        dtype=np.float64,
     )
     if not np.all((factors >= 0.0) & (factors <= 1.0)):  # NaN fails too
         found = factors[~((factors >= 0.0) & (factors <= 1.0))][0]

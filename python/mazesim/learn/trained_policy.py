@@ -16,6 +16,7 @@ import numpy as np
 import numpy.typing as npt
 
 from mazesim._core import World
+from mazesim._sizes import number_array
 from mazesim.actions import ACTION_CODES
 from mazesim.errors import PolicyFormatError, RegisteredName, UnknownNameError, _known_name, _shown
 from mazesim.learn.subtasks import CONTROL_STEP_MS
@@ -174,6 +175,6 @@ class _FlatDriver:
     def act(self, distances_cm: npt.ArrayLike, checkpoint: int) -> str:
         from mazesim.learn.discretise import distance_levels
 
-        levels = distance_levels(np.asarray(distances_cm, dtype=np.float64).reshape(1, 6))
+        levels = distance_levels(number_array(distances_cm, "distances_cm").reshape(1, 6))
         state = self.navigator.states_from_levels(levels, np.array([int(checkpoint)]))
         return ACTION_CODES[int(np.argmax(self.navigator.q[state[0]]))]

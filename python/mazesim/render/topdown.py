@@ -22,6 +22,7 @@ import numpy.typing as npt
 if TYPE_CHECKING:
     from mazesim._core import RobotProfile, World
 
+from mazesim._sizes import number_array
 from mazesim.sensor_rays import SensorRays
 
 __all__ = ["TopDownRenderer", "overlay_text"]
@@ -144,7 +145,7 @@ class TopDownRenderer:
         self, image: npt.NDArray[np.uint8], trail: npt.ArrayLike, rgb: tuple[int, int, int]
     ) -> None:
         """Draws the line through a robot's past positions ((K, 2))."""
-        points = np.asarray(trail, dtype=np.float64).reshape(-1, 2)
+        points = number_array(trail, "trail", nan_means="a gap in the trail").reshape(-1, 2)
         if len(points) > 1:
             colour = np.array([rgb] * (len(points) - 1), dtype=np.uint8)
             self._segments(

@@ -20,7 +20,7 @@ import numpy as np
 import numpy.typing as npt
 
 from mazesim._core import RobotProfile, Simulator, World
-from mazesim._sizes import index_array
+from mazesim._sizes import index_array, number_array
 from mazesim.learn import qlearning
 from mazesim.learn.discretise import NUM_LEVELS, NUM_SENSORS, distances_and_levels
 from mazesim.replay.run import Decision, RecordedEpisode, RecordedRun, RunRobot
@@ -89,7 +89,7 @@ class EpisodeRecorder:
     def walls_changed(self, boxes: npt.ArrayLike) -> None:
         """The walls stand as ``boxes`` from the next frame on (a supervisor changed them);
         nothing changes when they stand as before (a change of the world's robots alone)."""
-        array = np.asarray(boxes, dtype=np.float64)
+        array = number_array(boxes, "boxes")
         array = array.reshape(-1, array.shape[-1] if array.ndim == 2 else 5)[:, :5].copy()
         standing = self.walls[-1][1] if self.walls else self.world.wall_boxes()[:, :5]
         if array.shape == standing.shape and np.array_equal(array, standing):
@@ -115,7 +115,7 @@ class EpisodeRecorder:
         the robot touches a wall, and the checkpoint event of the step that led here."""
         x, y, yaw = (float(v) for v in pose)
         self.poses.append((x, y, yaw))
-        self.readings.append(np.asarray(readings, dtype=np.float64).ravel())
+        self.readings.append(number_array(readings, "readings", nan_means="no reading yet").ravel())
         self.ray_lengths.append(self.rays.lengths((x, y, yaw)))
         self.colliding.append(bool(colliding))
         self.events.append(int(event))

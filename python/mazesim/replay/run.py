@@ -48,6 +48,7 @@ import numpy.typing as npt
 from mazesim._atomic import atomic_file
 from mazesim._core import RobotProfile, World, robot_profile_names
 from mazesim._paths import found_kind, read_input, utf8_text
+from mazesim._sizes import number_array
 from mazesim.errors import InvalidArgumentError, MazesimError, RunFormatError, _shown
 from mazesim.replay.run_fields import RunFields
 
@@ -398,9 +399,14 @@ class RecordedRun:
         return values
 
 
+#: What a NaN in a run being saved stands for: a number the saved text cannot hold, which
+#: :func:`save_run` refuses naming its field when it reads the text back as :func:`load_run` does.
+SAVED_AND_REFUSED = "a misfit the read-back check refuses, by field"
+
+
 def _wall_boxes_json(boxes: npt.ArrayLike) -> list[list[int]]:
     """Wall boxes (N, 5 or more) as whole units: centre and size in 0.1 mm, yaw in mrad."""
-    array = np.asarray(boxes, dtype=np.float64).reshape(-1, WALL_BOX_NUMBERS)
+    array = number_array(boxes, "boxes", nan_means=SAVED_AND_REFUSED).reshape(-1, WALL_BOX_NUMBERS)
     units = np.array([POSITION_UNIT] * 4 + [YAW_UNIT])
     whole: list[list[int]] = np.rint(array / units).astype(np.int64).tolist()
     return whole
@@ -408,7 +414,7 @@ def _wall_boxes_json(boxes: npt.ArrayLike) -> list[list[int]]:
 
 def _whole(values: npt.ArrayLike, unit: float) -> list[Any]:
     """Values as whole multiples of ``unit`` (nested lists for 2-D arrays)."""
-    array = np.asarray(values, dtype=np.float64)
+    array = number_array(values, "values", nan_means=SAVED_AND_REFUSED)
     whole: list[Any] = np.rint(array / unit).astype(np.int64).tolist()
     return whole
 

@@ -16,6 +16,7 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
+from mazesim._sizes import number_array
 from mazesim.errors import RunFormatError
 from mazesim.learn.schema import describe
 
@@ -110,8 +111,8 @@ class RunFields:
         if not isinstance(value, list) or len(value) != rows:
             raise self.fail(field, expected, value)
         try:
-            array = np.asarray(value, dtype=np.float64)
-        except (ValueError, TypeError, OverflowError):
+            array = number_array(value, field, nan_means="a misfit, refused below by its place")
+        except (ValueError, TypeError, OverflowError):  # InvalidArgumentError is a ValueError
             raise self._first_misfit(value, field, columns, bound) from None
         wanted_ndim = 1 if columns is None else 2
         if rows == 0 and columns is not None:

@@ -26,7 +26,7 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-from mazesim._sizes import index_array
+from mazesim._sizes import index_array, number_array
 from mazesim.episodes import NavigatorWrapper
 from mazesim.odometry import advance
 
@@ -67,7 +67,7 @@ class EncoderOdometryNavigator(NavigatorWrapper):
     def reset(self, envs: npt.ArrayLike, poses: npt.ArrayLike) -> None:
         """Starts robots ``envs`` afresh: their odometry starts from their true poses."""
         robots = index_array(envs, "envs", self.pose.shape[0])
-        self.pose[robots] = np.asarray(poses, dtype=np.float64)[robots]
+        self.pose[robots] = number_array(poses, "poses")[robots]
         self._last[robots] = np.asarray(self.read_encoders(), dtype=np.float64)[robots]
         self.navigator.reset(envs, self.pose)
 

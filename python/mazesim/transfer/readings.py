@@ -28,6 +28,7 @@ import numpy as np
 import numpy.typing as npt
 
 from mazesim._core import RobotProfile
+from mazesim._sizes import number_array
 from mazesim.episodes import NavigatorWrapper
 from mazesim.learn.discretise import NUM_SENSORS, SHARP_TABLE
 from mazesim.odometry import wrap_angle
@@ -84,7 +85,7 @@ class SeedReadings:
 
     def distances_m(self, readings: npt.ArrayLike) -> npt.NDArray[np.float64]:
         """(N, 6) distances in metres of the six directions from (N, W) readings."""
-        rows = np.asarray(readings, dtype=np.float64)
+        rows = number_array(readings, "readings")
         out = np.empty((rows.shape[0], NUM_SENSORS))
         for place, sensors in enumerate(self.sensors):
             seen = []

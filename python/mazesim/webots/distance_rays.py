@@ -102,6 +102,10 @@ class DistanceRays:
     """The rays of one DistanceSensor: unit directions in the sensor's frame (x its axis; (N, 3))
     and weights summing to 1 (N,)."""
 
+    #: A world's field values, NaN included, are corrected as Webots corrects them (an aperture
+    #: of NaN is one ray): the surface check lets NaN through (``mazesim._checks``).
+    _takes_nan = True
+
     directions: Floats
     weights: Floats
 

@@ -17,7 +17,7 @@ import numpy as np
 import numpy.typing as npt
 
 from mazesim._core import World
-from mazesim._sizes import index_array
+from mazesim._sizes import index_array, number_array
 from mazesim.errors import _shown
 
 __all__ = ["FloorPaint", "WallBoxes"]
@@ -45,7 +45,7 @@ class WallBoxes:
     def of_boxes(cls, boxes: list[tuple[float, float, float, float, float, float]]) -> WallBoxes:
         """Boxes (centre x, y, size x, y, yaw, reflectance each) as walls, of no colour."""
         made = cls.__new__(cls)
-        array = np.asarray(boxes, dtype=np.float64).reshape(-1, 6)
+        array = number_array(boxes, "boxes").reshape(-1, 6)
         made._take(array, np.full((array.shape[0], 3), np.nan))
         return made
 
@@ -74,8 +74,8 @@ class WallBoxes:
         cylinders ``discs`` ((K, 4): centre x, y, radius, reflectance) of tops ``disc_tops``;
         this one when there are none. The new boxes have no colour; indices past the boxes
         (:meth:`cast_walls`) are cylinders."""
-        boxes = np.asarray(boxes, dtype=np.float64).reshape(-1, 6)
-        discs = np.asarray(discs, dtype=np.float64).reshape(-1, 4)
+        boxes = number_array(boxes, "boxes").reshape(-1, 6)
+        discs = number_array(discs, "discs").reshape(-1, 4)
         if not boxes.shape[0] and not discs.shape[0]:
             return self
         joined = copy.copy(self)
@@ -88,8 +88,8 @@ class WallBoxes:
         joined.disc_center = np.concatenate([self.disc_center, discs[:, 0:2]])
         joined.disc_radius = np.concatenate([self.disc_radius, discs[:, 2]])
         # Reflectances and tops: the boxes', then the cylinders'.
-        box_tops = np.asarray(box_tops, dtype=np.float64).reshape(-1)
-        disc_tops = np.asarray(disc_tops, dtype=np.float64).reshape(-1)
+        box_tops = number_array(box_tops, "box_tops").reshape(-1)
+        disc_tops = number_array(disc_tops, "disc_tops").reshape(-1)
         joined.reflectance = np.concatenate(
             [self.reflectance[:count], boxes[:, 5], self.reflectance[count:], discs[:, 3]]
         )
@@ -292,7 +292,7 @@ class WallBoxes:
         Returns:
             As :meth:`cast_sloped`, each shaped (H, W).
         """
-        rows = np.asarray(slopes, dtype=np.float64).reshape(-1)
+        rows = number_array(slopes, "slopes").reshape(-1)
         count = directions.shape[0]
         shape = (rows.shape[0], count)
         if self.top.shape[0] == 0 or count == 0 or rows.shape[0] == 0:
@@ -478,7 +478,10 @@ class FloorPaint:
         """The paint region seen at each point (the last drawn there), -1 for the bare floor.
 
         Each region tests only the points in the grid cells its bounding box covers."""
-        x, y = np.broadcast_arrays(np.asarray(x, dtype=np.float64), np.asarray(y, dtype=np.float64))
+        nowhere = "a point in no region"
+        x, y = np.broadcast_arrays(
+            number_array(x, "x", nan_means=nowhere), number_array(y, "y", nan_means=nowhere)
+        )
         px, py = x.ravel(), y.ravel()
         result = np.full(px.shape, -1, dtype=np.intp)
         for index, points in self._grid.candidates(px, py):
@@ -538,7 +541,9 @@ class _PaintGrid:
 
     def __init__(self, bounds: list[tuple[float, float, float, float]]) -> None:
         self.count = len(bounds)
-        boxes = np.array(bounds, dtype=np.float64).reshape(-1, 4)
+        boxes = np.array(
+            number_array(bounds, "bounds", nan_means="a box of no known bounds")
+        ).reshape(-1, 4)
         #: Whether every box is finite; otherwise every point is every region's candidate.
         self.bounded = bool(np.isfinite(boxes).all())
         self.low = boxes[:, :2].min(axis=0) if self.count else np.zeros(2)

@@ -25,6 +25,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from mazesim._sizes import number_array
 from mazesim.errors import _shown
 from mazesim.webots.devices import _print_error, device_side
 from mazesim.webots.inert import Lidar, LidarPoint, RangeFinder
@@ -74,7 +75,7 @@ class _Rays:
         none), the layers cast together."""
         x, y, heading = self._mount.world_pose(self._simulation.simulator.pose)
         directions = np.stack([np.cos(heading + angles), np.sin(heading + angles)], axis=1)
-        rise = np.tan(np.asarray(elevations, dtype=float))[:, None] * np.ones(len(angles))
+        rise = np.tan(number_array(elevations, "elevations"))[:, None] * np.ones(len(angles))
         walls = self._obstacles.boxes()
         distance, _, _ = walls.cast_sloped((x, y), directions, self.height(), rise)
         return np.asarray(distance, dtype=float)

@@ -137,6 +137,11 @@ class NotSimulated:
     answers as Webots' API has it; the class gets each of its Webots properties whose name it
     does not define (from the getter and setter the table pairs it with)."""
 
+    #: Webots' API answers a NaN argument itself, as Webots does (``Motor.setVelocity(nan)``
+    #: prints Webots' error and is ignored): the surface check lets NaN through to it
+    #: (``mazesim._checks``, which refuses NaN for a number elsewhere).
+    _takes_nan = True
+
     def __init_subclass__(cls, **kwargs: Any) -> None:
         super().__init_subclass__(**kwargs)
         found = webots_classes().get(_named(cls))

@@ -1,0 +1,182 @@
+"""NaN is no number a public function takes. Every comparison with NaN is False, so a range check
+written ``if not low <= x <= high`` refuses it but one written ``if x < low or x > high`` lets it
+through, and a sum carries it on: 48 entry points once stored or used a NaN given for a
+``float`` parameter (``Scene(camera_fov=nan)``, ``EpisodeTrace(x=nan)``,
+``StudyResult(default_speed=nan)``, poses and starts given as lists holding NaN).
+
+Two mechanisms make the next such parameter right by construction:
+
+- the surface check (``mazesim._checks``) refuses NaN before the call for every parameter
+  annotated as a number (``float``, alone or in a union) or as a list or tuple of numbers (a
+  numpy array in its place too), and the walk of the public surface gives every such parameter
+  NaN, found by its annotation (``surface.registry.number_parameters``). Webots' API is the
+  exception: it answers NaN as Webots does (``Motor.setVelocity(nan)`` prints Webots' error and
+  is ignored);
+- an array argument (annotated ``ArrayLike``, which may hold anything) is converted to floats
+  only through ``mazesim._sizes.number_array``, which refuses NaN unless the place says what a
+  NaN means there (``nan_means="a gap in the path"``); the scan below fails on a function that
+  hands one of its parameters to numpy with a float dtype. 55 conversions once did, and a NaN
+  front reading drove ``AvoidCollision`` straight on, ``HierarchicalPolicy.reset`` stored NaN
+  poses.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+
+import numpy as np
+import pytest
+
+import mazesim
+from mazesim._checks import checked
+from test_whole_numbers import conversions_in_package, conversions_of_parameters, dtype_of
+
+INVALID = mazesim.InvalidArgumentError
+
+
+@checked
+def _scaled(
+    gain: float,
+    pose: tuple[float, float, float] = (0.0, 0.0, 0.0),
+    path: Sequence[Sequence[float]] = (),
+    count: int | float = 1,
+) -> float:
+    return gain * (sum(pose) + sum(sum(p) for p in path)) * count
+
+
+@pytest.mark.parametrize(
+    ("arguments", "words"),
+    [
+        ({"gain": math.nan}, "gain refused: expected a number, found NaN"),
+        ({"gain": np.float32("nan")}, "gain refused: expected a number, found NaN"),
+        ({"gain": np.float64("nan")}, "gain refused: expected a number, found NaN"),
+        ({"gain": 1.0, "count": math.nan}, "count refused: expected a number, found NaN"),
+        ({"gain": 1.0, "pose": (0.0, math.nan, 0.0)}, "pose refused: item 1: expected a number"),
+        ({"gain": 1.0, "pose": np.array([0.0, np.nan, 0.0])}, "pose refused: an item: expected"),
+        ({"gain": 1.0, "path": [[0.0, 1.0], [2.0, math.nan]]}, "path refused: item 1: item 1"),
+        ({"gain": 1.0, "path": [np.array([0.0, np.nan])]}, "path refused: item 0: expected"),
+        # A masked array's values are read whatever its mask.
+        (
+            {"gain": 1.0, "pose": np.ma.masked_array([0.0, np.nan, 0.0], mask=True)},
+            "pose refused: an item: expected a number, found NaN",
+        ),
+    ],
+)  # fmt: skip
+def test_nan_given_for_a_number_is_refused_before_the_call(
+    arguments: dict[str, object], words: str
+) -> None:
+    with pytest.raises(INVALID, match=words):
+        _scaled(**arguments)  # type: ignore[arg-type]
+
+
+def test_numbers_and_infinities_are_taken_as_they_are() -> None:
+    assert _scaled(2.0, (1.0, 2, 3.0), [[1.0], np.array([1.0, 1.0])]) == 18.0
+    assert _scaled(np.float32(0.5), np.array([1.0, 1.0, 0.0]), count=2) == 2.0
+    assert _scaled(math.inf, (1.0, 0.0, 0.0)) == math.inf  # infinities: each function's own say
+    assert _scaled(1.0, pose=np.array([1, 2, 3])) == 6  # an array of ints holds no NaN
+
+
+class _WebotsLike:
+    """A class that answers NaN itself, as Webots' API does."""
+
+    _takes_nan = True
+
+    def set_velocity(self, velocity: float) -> str:
+        return "ignored" if math.isnan(velocity) else "set"
+
+
+def test_a_class_that_answers_nan_itself_is_given_it() -> None:
+    from mazesim._checks import _guard_class
+
+    class Own(_WebotsLike):
+        pass
+
+    _guard_class(_WebotsLike)
+    _guard_class(Own)
+    assert Own().set_velocity(math.nan) == "ignored"
+
+    class Strict:
+        def set_velocity(self, velocity: float) -> str:
+            return "set"
+
+    _guard_class(Strict)
+    with pytest.raises(INVALID, match="velocity refused: expected a number, found NaN"):
+        Strict().set_velocity(math.nan)
+
+
+def test_the_entry_points_that_once_took_nan_refuse_it() -> None:
+    from mazesim.render.episode import EpisodeTrace
+    from mazesim.webots.camera import CameraView
+    from mazesim.webots.devices import Motor
+
+    with pytest.raises(INVALID, match="fov refused: expected a number, found NaN"):
+        CameraView(fov=math.nan)
+    with pytest.raises(INVALID, match="x refused: expected a number, found NaN"):
+        EpisodeTrace(x=math.nan)
+    assert getattr(Motor, "_takes_nan", False)  # Webots' API: answers NaN as Webots does
+
+
+def test_the_walk_gives_nan_to_every_number_parameter_it_finds() -> None:
+    """The registry finds number parameters by annotation, and leaves Webots' API out."""
+    from surface.registry import python_entry_points, refusals_of
+
+    entries = {e.path: e for e in python_entry_points()}
+    scene = entries["mazesim.webots.scene:Scene"]
+    assert "camera_fov" in scene.numbers
+    assert {"start", "goal"} <= set(entries["mazesim.render.topdown:TopDownRenderer"].number_lists)
+    assert not entries["mazesim.webots.devices:Motor.setVelocity"].numbers
+    refused = refusals_of(entries["mazesim.render.episode:EpisodeTrace"])
+    assert {"x": ("nan",)} in [r.absurd for r in refused]
+    walked = [e for e in entries.values() if e.numbers or e.number_lists]
+    assert len(walked) >= 150, len(walked)
+
+
+#: numpy's float types, as a dtype argument names them.
+FLOAT_TYPES = {"float", "float16", "float32", "float64", "double", "single", "longdouble"}
+
+
+_float_dtype = dtype_of(FLOAT_TYPES, ("float", "f"))
+
+
+def test_the_scan_finds_the_conversions_that_take_nan_silently() -> None:
+    source = """
+def act(self, readings, poses, held):
+    a = np.asarray(readings, dtype=np.float64)
+    b = np.ascontiguousarray(np.ravel(poses), np.float32)
+    c = held.astype(float)
+    d = np.asarray(self.table, dtype=np.float64)  # the object's own: not a parameter
+    e = number_array(readings, "readings")  # the one way
+"""
+    assert conversions_of_parameters(source, _float_dtype) == [
+        "act(readings) line 3",
+        "act(poses) line 4",
+        "act(held) line 5",
+    ]
+
+
+def test_no_function_of_the_package_hands_a_parameter_to_numpy_as_floats() -> None:
+    found = conversions_in_package(_float_dtype)
+    assert not found, (
+        "convert with mazesim._sizes.number_array, which refuses NaN unless nan_means says "
+        f"what a NaN stands for there: {sorted(found)}"
+    )
+
+
+def test_an_array_holding_nan_is_refused_where_no_nan_is_meant() -> None:
+    from mazesim.controllers import AvoidCollision
+    from mazesim.learn.higher import HigherLevel
+    from mazesim.learn.policy import HierarchicalPolicy, lower_table_shape
+
+    readings = np.zeros(8)
+    readings[3] = np.nan
+    with pytest.raises(INVALID, match="expected distance_sensors as numbers, found NaN"):
+        AvoidCollision()(readings)
+    with pytest.raises(INVALID, match="expected poses as numbers, found NaN"):
+        policy = HierarchicalPolicy(np.zeros(lower_table_shape()), HigherLevel([[1]]), [0])
+        policy.reset([0], [[0.1, np.nan, 0.0]])
+    # Where a NaN means something, it is taken: a gap in a plotted path.
+    from mazesim.plotting import trajectory_limits
+
+    world = mazesim.World.builtin("seed-maze")
+    assert trajectory_limits(world, [0.0, np.nan, 1.0], [0.0, np.nan, 1.0]) is not None
