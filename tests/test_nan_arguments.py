@@ -1,23 +1,26 @@
-"""NaN is no number a public function takes. Every comparison with NaN is False, so a range check
-written ``if not low <= x <= high`` refuses it but one written ``if x < low or x > high`` lets it
-through, and a sum carries it on: 48 entry points once stored or used a NaN given for a
-``float`` parameter (``Scene(camera_fov=nan)``, ``EpisodeTrace(x=nan)``,
-``StudyResult(default_speed=nan)``, poses and starts given as lists holding NaN).
+"""NaN is no number a public function takes, nor an infinity unless the parameter says so. Every
+comparison with NaN is False, so a range check written ``if not low <= x <= high`` refuses it
+but one written ``if x < low or x > high`` lets it through, and a sum carries it on; an infinity
+passes every check written for a range. 48 entry points once stored or used a NaN given for a
+``float`` parameter, and 34 an infinity (``Scene(camera_fov=nan)``, ``CameraView(x=inf)``,
+``EpisodeTrace(x=nan)``, ``StudyResult(default_speed=nan)``, poses and starts given as lists
+holding NaN).
 
 Two mechanisms make the next such parameter right by construction:
 
 - the surface check (``mazesim._checks``) refuses NaN before the call for every parameter
   annotated as a number (``float``, alone or in a union) or as a list or tuple of numbers (a
-  numpy array in its place too), and the walk of the public surface gives every such parameter
-  NaN, found by its annotation (``surface.registry.number_parameters``). Webots' API is the
-  exception: it answers NaN as Webots does (``Motor.setVelocity(nan)`` prints Webots' error and
-  is ignored);
-- an array argument (annotated ``ArrayLike``, which may hold anything) is converted to floats
-  only through ``mazesim._sizes.number_array``, which refuses NaN unless the place says what a
-  NaN means there (``nan_means="a gap in the path"``); the scan below fails on a function that
-  hands one of its parameters to numpy with a float dtype. 55 conversions once did, and a NaN
-  front reading drove ``AvoidCollision`` straight on, ``HierarchicalPolicy.reset`` stored NaN
-  poses.
+  numpy array in its place too), and an infinity unless the annotation is
+  ``mazesim.errors.MaybeInfinite``; the walk of the public surface gives every such parameter
+  NaN and an infinity, found by its annotation (``surface.registry.number_parameters``). Webots'
+  API is the exception: it answers NaN as Webots does (``Motor.setVelocity(nan)`` prints Webots'
+  error and is ignored);
+- an array argument (annotated ``ArrayLike``, which may hold anything, infinite distances
+  among them) is converted to floats only through ``mazesim._sizes.number_array``, which refuses
+  NaN unless the place says what a NaN means there (``nan_means="a gap in the path"``); the scan
+  below fails on a function that hands one of its parameters to numpy with a float dtype. 55
+  conversions once did, and a NaN front reading drove ``AvoidCollision`` straight on,
+  ``HierarchicalPolicy.reset`` stored NaN poses.
 """
 
 from __future__ import annotations
@@ -30,6 +33,7 @@ import pytest
 
 import mazesim
 from mazesim._checks import checked
+from mazesim.errors import MaybeInfinite
 from test_whole_numbers import conversions_in_package, conversions_of_parameters, dtype_of
 
 INVALID = mazesim.InvalidArgumentError
@@ -41,8 +45,10 @@ def _scaled(
     pose: tuple[float, float, float] = (0.0, 0.0, 0.0),
     path: Sequence[Sequence[float]] = (),
     count: int | float = 1,
+    reach: MaybeInfinite = math.inf,
+    bounds: tuple[MaybeInfinite, MaybeInfinite] = (-math.inf, math.inf),
 ) -> float:
-    return gain * (sum(pose) + sum(sum(p) for p in path)) * count
+    return min(gain * (sum(pose) + sum(sum(p) for p in path)) * count, reach)
 
 
 @pytest.mark.parametrize(
@@ -53,13 +59,19 @@ def _scaled(
         ({"gain": np.float64("nan")}, "gain refused: expected a number, found NaN"),
         ({"gain": 1.0, "count": math.nan}, "count refused: expected a number, found NaN"),
         ({"gain": 1.0, "pose": (0.0, math.nan, 0.0)}, "pose refused: item 1: expected a number"),
-        ({"gain": 1.0, "pose": np.array([0.0, np.nan, 0.0])}, "pose refused: an item: expected"),
+        ({"gain": 1.0, "pose": np.array([0.0, np.nan, 0.0])}, "pose refused: expected finite"),
+        # An infinity, unless the annotation is MaybeInfinite.
+        ({"gain": math.inf}, "gain refused: expected a finite number, found inf"),
+        ({"gain": 1.0, "pose": (0.0, -math.inf, 0.0)}, "pose refused: item 1: expected a finite"),
+        ({"gain": 1.0, "pose": np.array([0.0, np.inf, 0.0])}, "pose refused: expected finite"),
+        ({"gain": 1.0, "reach": math.nan}, "reach refused: expected a number, found NaN"),
+        ({"gain": 1.0, "reach": 2.0, "bounds": (0.0, math.nan)}, "bounds refused: item 1:"),
         ({"gain": 1.0, "path": [[0.0, 1.0], [2.0, math.nan]]}, "path refused: item 1: item 1"),
         ({"gain": 1.0, "path": [np.array([0.0, np.nan])]}, "path refused: item 0: expected"),
         # A masked array's values are read whatever its mask.
         (
             {"gain": 1.0, "pose": np.ma.masked_array([0.0, np.nan, 0.0], mask=True)},
-            "pose refused: an item: expected a number, found NaN",
+            "pose refused: expected finite numbers, found NaN or an infinity",
         ),
     ],
 )  # fmt: skip
@@ -73,7 +85,7 @@ def test_nan_given_for_a_number_is_refused_before_the_call(
 def test_numbers_and_infinities_are_taken_as_they_are() -> None:
     assert _scaled(2.0, (1.0, 2, 3.0), [[1.0], np.array([1.0, 1.0])]) == 18.0
     assert _scaled(np.float32(0.5), np.array([1.0, 1.0, 0.0]), count=2) == 2.0
-    assert _scaled(math.inf, (1.0, 0.0, 0.0)) == math.inf  # infinities: each function's own say
+    assert _scaled(1.0, reach=math.inf, bounds=(0.0, math.inf)) == 0.0  # MaybeInfinite
     assert _scaled(1.0, pose=np.array([1, 2, 3])) == 6  # an array of ints holds no NaN
 
 
@@ -127,7 +139,9 @@ def test_the_walk_gives_nan_to_every_number_parameter_it_finds() -> None:
     assert {"start", "goal"} <= set(entries["mazesim.render.topdown:TopDownRenderer"].number_lists)
     assert not entries["mazesim.webots.devices:Motor.setVelocity"].numbers
     refused = refusals_of(entries["mazesim.render.episode:EpisodeTrace"])
-    assert {"x": ("nan",)} in [r.absurd for r in refused]
+    assert {"x": ("nan", "inf")} in [r.absurd for r in refused]
+    axis = entries["mazesim.transfer.axes:Axis"]  # bounds of no limit: MaybeInfinite
+    assert {"low", "high"} <= set(axis.unbounded_numbers) and "low" not in axis.numbers
     walked = [e for e in entries.values() if e.numbers or e.number_lists]
     assert len(walked) >= 150, len(walked)
 

@@ -41,6 +41,7 @@ import functools
 import importlib.abc
 import importlib.machinery
 import inspect
+import math
 import os
 import sys
 import types
@@ -57,6 +58,7 @@ from mazesim._hot_paths import is_checked, mark_checked
 from mazesim._sizes import MOST_ENVS, size_of
 from mazesim.errors import (
     InvalidArgumentError,
+    MaybeInfinite,
     MazesimError,
     WrongTypeError,
     _a_type,
@@ -509,46 +511,80 @@ def _item_depth(hint: Any, kind: type = int) -> int:
     if typing.get_origin(hint) not in (list, tuple, abc.Sequence, abc.MutableSequence):
         return 0
     items = {a for a in typing.get_args(hint) if a is not Ellipsis}
-    if items == {kind} or kind is float and items == {float, int}:
+    if (
+        items == {kind}
+        or kind is float
+        and (items <= {float, int, MaybeInfinite} and items - {int})
+    ):
         return 1
     inner = {_item_depth(a, kind) for a in items}
     return 1 + inner.pop() if len(inner) == 1 and 0 not in inner else 0
 
 
 def _takes_float(hint: Any) -> bool:
-    """Whether ``hint`` is ``float`` or a union with ``float``."""
-    if hint is float:
+    """Whether ``hint`` is a number (``float`` or :data:`~mazesim.errors.MaybeInfinite`), or a
+    union with one."""
+    if hint is float or hint == MaybeInfinite:
         return True
-    return typing.get_origin(hint) in _UNIONS and float in typing.get_args(hint)
+    members = typing.get_args(hint) if typing.get_origin(hint) in _UNIONS else ()
+    return float in members or MaybeInfinite in members
 
 
-def _nan_item(value: Any, depth: int, budget: list[int]) -> str | None:
-    """The place (``"item 0: item 2"``) of the first NaN of a list or tuple of numbers nested
-    ``depth`` deep, or of a numpy array in its place; at most ``budget[0]`` items are read, the
-    budget shared by the levels."""
+def _may_be_infinite(hint: Any) -> bool:
+    """Whether ``hint`` is :data:`~mazesim.errors.MaybeInfinite`, alone, in a union or as the
+    items of a list or tuple."""
+    if hint == MaybeInfinite:
+        return True
+    return typing.get_origin(hint) in (*_UNIONS, list, tuple, abc.Sequence) and any(
+        _may_be_infinite(member) for member in typing.get_args(hint)
+    )
+
+
+def _not_a_finite(value: Any, infinite: bool) -> str | None:
+    """What is wrong with a number (a float) given where a finite one is meant (or, with
+    ``infinite``, any but NaN), or None."""
+    if value != value:
+        return "expected a number, found NaN"
+    if not infinite and value in (math.inf, -math.inf):
+        return f"expected a finite number, found {float(value)}"
+    return None
+
+
+#: Why an array is refused for a list of numbers.
+_NAN = "expected numbers, found NaN"
+_NOT_FINITE = "expected finite numbers, found NaN or an infinity"
+
+
+def _nan_item(value: Any, depth: int, budget: list[int], infinite: bool) -> tuple[str, str] | None:
+    """The place (``"item 0: item 2"``) and the refusal of the first NaN (or, unless
+    ``infinite``, infinity) of a list or tuple of numbers nested ``depth`` deep, or of a numpy
+    array in its place; at most ``budget[0]`` items are read, the budget shared by the levels."""
     for index, item in enumerate(value):
         if budget[0] <= 0:
             return None
         budget[0] -= 1
         if isinstance(item, np.ndarray):
-            if _holds_nan(item):
-                return f"item {index}"
+            if _holds_nan(item, infinite):
+                return f"item {index}", _NOT_FINITE if infinite is False else _NAN
         elif depth > 1 and isinstance(item, (list, tuple)):
-            inner = _nan_item(item, depth - 1, budget)
+            inner = _nan_item(item, depth - 1, budget, infinite)
             if inner is not None:
-                return f"item {index}: {inner}"
-        elif isinstance(item, _FLOATS) and item != item:
-            return f"item {index}"
+                return f"item {index}: {inner[0]}", inner[1]
+        elif isinstance(item, _FLOATS):
+            reason = _not_a_finite(item, infinite)
+            if reason is not None:
+                return f"item {index}", reason
     return None
 
 
-def _holds_nan(array: np.ndarray[Any, Any]) -> bool:
-    """Whether a numpy array of floats (of at most :data:`MOST_ARRAY_VALUES`) holds a NaN, its
-    masked values too; an array of another kind is left to the call's own conversion."""
+def _holds_nan(array: np.ndarray[Any, Any], infinite: bool = True) -> bool:
+    """Whether a numpy array of floats (of at most :data:`MOST_ARRAY_VALUES`) holds a NaN (or,
+    unless ``infinite``, an infinity), its masked values too; an array of another kind is left to
+    the call's own conversion."""
     if array.dtype.kind not in "fc" or array.size > MOST_ARRAY_VALUES:
         return False
     values = np.asarray(array.data if isinstance(array, np.ma.MaskedArray) else array)
-    return bool(np.isnan(values).any())
+    return bool(np.isnan(values).any() if infinite else not np.isfinite(values).all())
 
 
 def _another_int_item(value: Any, depth: int, budget: list[int]) -> tuple[str, Any] | None:
@@ -679,6 +715,9 @@ class _Parameters:
         self.takes_nan = takes_nan
         self.numbers: set[str] = set()
         self.number_items: dict[str, int] = {}
+        #: Those of them annotated :data:`~mazesim.errors.MaybeInfinite`: an infinity is taken;
+        #: the others are given a finite number or refused.
+        self.infinite: set[str] = set()
         #: Whether any parameter is a list of ints or of numbers (an array may stand for one).
         self.any_items = False
 
@@ -718,6 +757,8 @@ class _Parameters:
             depth = 0 if self.takes_nan else _item_depth(hint, float)
             if depth:
                 self.number_items[p.name] = depth
+            if _may_be_infinite(hint):
+                self.infinite.add(p.name)
         self.any_items = bool(self.int_items or self.number_items)
         for index, p in enumerate(parameters):
             most = _bound_of(hints.get(p.name, Any))
@@ -826,8 +867,10 @@ class _Parameters:
                     raise refusal_error(reason)(
                         f"{self.func.__qualname__}: {name} refused: {place}: {reason}"
                     )
-            if name in self.numbers and isinstance(value, _FLOATS) and value != value:
-                self.refuse_nan(name, "")
+            if name in self.numbers and isinstance(value, _FLOATS):
+                reason = _not_a_finite(value, name in self.infinite)
+                if reason is not None:
+                    self.refuse_nan(name, "", reason)
             if name in self.number_items:
                 self.refuse_nan_items(name, value)
             if hint is Any or not isinstance(value, _SCALARS):
@@ -843,21 +886,23 @@ class _Parameters:
 
     def refuse_nan_items(self, name: str, value: Any) -> None:
         """Refuses a list or tuple of numbers (or a numpy array in its place) holding NaN."""
+        infinite = name in self.infinite
+        found: tuple[str, str] | None = None
         if isinstance(value, np.ndarray):
-            place = "an item" if _holds_nan(value) else None
+            if _holds_nan(value, infinite):
+                found = ("", _NAN if infinite else _NOT_FINITE)
         elif isinstance(value, (list, tuple)):
-            place = _nan_item(value, self.number_items[name], [CHECKED_INT_ITEMS])
-        else:
-            return
-        if place is not None:
-            self.refuse_nan(name, f"{place}: ")
+            found = _nan_item(value, self.number_items[name], [CHECKED_INT_ITEMS], infinite)
+        if found is not None:
+            place, reason = found
+            self.refuse_nan(name, f"{place}: " if place else "", reason)
 
-    def refuse_nan(self, name: str, place: str) -> None:
-        """Refuses NaN given for ``name`` (at ``place`` in it), saying what the parameter is
-        when the docstring says it (its range, its unit)."""
+    def refuse_nan(self, name: str, place: str, reason: str) -> None:
+        """Refuses NaN or an infinity given for ``name`` (at ``place`` in it), saying what the
+        parameter is when the docstring says it (its range, its unit)."""
         meaning = documented_argument(self.func, name)
         raise InvalidArgumentError(
-            f"{self.func.__qualname__}: {name} refused: {place}expected a number, found NaN"
+            f"{self.func.__qualname__}: {name} refused: {place}{reason}"
             + (f"; {name}: {meaning}" if meaning else "")
         )
 

@@ -197,6 +197,20 @@ class _Registered:
 RegisteredName = Annotated[str, _Registered()]
 
 
+class _Unbounded:
+    """The mark of :data:`MaybeInfinite`."""
+
+    def __repr__(self) -> str:
+        return "a number, or an infinity"
+
+
+#: The annotation of a number parameter that may be infinite (a bound of no limit, a distance
+#: of "nothing in range"): a ``float`` to type checkers. A parameter annotated plain ``float`` is
+#: given a finite number or refused before the call (``mazesim._checks``); NaN is refused for
+#: both. The hostile walk gives every ``float`` parameter an infinity, found by its annotation.
+MaybeInfinite = Annotated[float, _Unbounded()]
+
+
 def _known_name(value: object, what: str, known: Collection[str], hint: str = "") -> str:
     """``value`` when it is one of the ``known`` names of ``what``; else the one refusal of a
     name no registry of mazesim holds: an :class:`UnknownNameError` listing the known names

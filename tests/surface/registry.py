@@ -325,30 +325,34 @@ def registered_name_parameters(target: Callable[..., Any]) -> tuple[str, ...]:
     )
 
 
-#: What a parameter annotated as a number (``float``, alone or in a union) is given, and one
-#: annotated as a list or tuple of numbers: NaN, which no comparison catches and every sum
-#: carries on, is refused by the surface check (``mazesim._checks``) unless the class is Webots'
-#: API (``_takes_nan``: it answers NaN as Webots does). Found by annotation, so that a new
-#: function's number parameter is walked with NaN by construction.
-NUMBER_VALUES = ("nan",)
+#: What a parameter annotated as a number is given: NaN, which no comparison catches and every
+#: sum carries on, and, unless it is annotated :data:`mazesim.errors.MaybeInfinite`, an
+#: infinity; one annotated as a list or tuple of numbers is given a list holding both. The
+#: surface check (``mazesim._checks``) refuses them unless the class is Webots' API
+#: (``_takes_nan``: it answers NaN as Webots does). Found by annotation, so that a new
+#: function's number parameter is walked with them by construction.
+NUMBER_VALUES = ("nan", "inf")
+UNBOUNDED_NUMBER_VALUES = ("nan",)
 NUMBER_LIST_VALUES = ("non_finite_list",)
 
 
-def number_parameters(target: Callable[..., Any]) -> tuple[tuple[str, ...], tuple[str, ...]]:
-    """The parameters of ``target`` (a class: of its constructor) annotated as numbers, and
-    those annotated as lists or tuples of numbers; none for Webots' API."""
-    from mazesim._checks import _item_depth, _takes_float
+def number_parameters(target: Callable[..., Any]) -> tuple[tuple[str, ...], ...]:
+    """The parameters of ``target`` (a class: of its constructor) annotated as finite numbers,
+    as numbers that may be infinite, and as lists or tuples of numbers; none for Webots' API."""
+    from mazesim._checks import _item_depth, _may_be_infinite, _takes_float
 
     if getattr(target, "_takes_nan", False) or getattr(
         getattr(target, "__self__", None), "_takes_nan", False
     ):
-        return (), ()
+        return (), (), ()
     if inspect.isclass(target):
         target = getattr(target, "__init__", target)
     hints = {n: h for n, h in annotations_of(target).items() if n != "return"}
-    numbers = tuple(name for name, hint in hints.items() if _takes_float(hint))
+    numbers = [name for name, hint in hints.items() if _takes_float(hint)]
+    unbounded = tuple(name for name in numbers if _may_be_infinite(hints[name]))
+    finite = tuple(name for name in numbers if name not in unbounded)
     lists = tuple(name for name, hint in hints.items() if _item_depth(hint, float))
-    return numbers, lists
+    return finite, unbounded, lists
 
 
 def refusals_of(entry: EntryPoint) -> tuple[MustRefuse, ...]:
@@ -364,6 +368,7 @@ def refusals_of(entry: EntryPoint) -> tuple[MustRefuse, ...]:
         },
         **dict.fromkeys(entry.named, REGISTERED_NAME_VALUES),
         **dict.fromkeys(entry.numbers, NUMBER_VALUES),
+        **dict.fromkeys(entry.unbounded_numbers, UNBOUNDED_NUMBER_VALUES),
         **dict.fromkeys(entry.number_lists, NUMBER_LIST_VALUES),
     }
     by_name = tuple(
@@ -394,8 +399,10 @@ class EntryPoint:
     any_keyword: bool = False
     #: Those annotated :data:`mazesim.errors.RegisteredName`.
     named: tuple[str, ...] = field(default=())
-    #: Those annotated as numbers, and as lists of numbers (:func:`number_parameters`).
+    #: Those annotated as finite numbers, as numbers that may be infinite, and as lists of
+    #: numbers (:func:`number_parameters`).
     numbers: tuple[str, ...] = field(default=())
+    unbounded_numbers: tuple[str, ...] = field(default=())
     number_lists: tuple[str, ...] = field(default=())
 
 
@@ -459,7 +466,10 @@ def _signature(
         params = params[1:]
     usable = [p for p in params if p.kind not in (p.VAR_POSITIONAL, p.VAR_KEYWORD)]
     names = {p.name for p in usable}
-    numbers, lists = ((), ()) if getattr(owner, "_takes_nan", False) else number_parameters(target)
+    none: tuple[tuple[str, ...], ...] = ((), (), ())
+    numbers, unbounded, lists = (
+        none if getattr(owner, "_takes_nan", False) else number_parameters(target)
+    )
     return EntryPoint(
         "",
         tuple(p.name for p in usable),
@@ -472,6 +482,7 @@ def _signature(
         any_keyword=any(p.kind is p.VAR_KEYWORD for p in params),
         named=tuple(name for name in registered_name_parameters(target) if name in names),
         numbers=tuple(name for name in numbers if name in names),
+        unbounded_numbers=tuple(name for name in unbounded if name in names),
         number_lists=tuple(name for name in lists if name in names),
     )
 

@@ -23,6 +23,7 @@ from collections.abc import Callable, Mapping
 from typing import Any, TextIO
 
 from mazesim._closing import Closing
+from mazesim.errors import MaybeInfinite
 
 __all__ = [
     "BAR_DELAY_S",
@@ -46,7 +47,7 @@ BAR_FORMAT = (
 )
 
 
-def clock_time(seconds: float) -> str:
+def clock_time(seconds: MaybeInfinite) -> str:
     """A duration as ``M:SS`` or ``H:MM:SS`` (``?`` when unknown)."""
     if not seconds >= 0.0 or seconds == float("inf"):
         return "?"

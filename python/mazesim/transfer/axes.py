@@ -44,6 +44,7 @@ from typing import Any, Union
 from mazesim.barcode.link import LINKS
 from mazesim.errors import (
     InvalidArgumentError,
+    MaybeInfinite,
     RegisteredName,
     _known_name,
     _shown,
@@ -87,8 +88,8 @@ class Axis:
     unit: str
     rest: Level
     levels: tuple[Level, ...]
-    low: float = -math.inf
-    high: float = math.inf
+    low: MaybeInfinite = -math.inf
+    high: MaybeInfinite = math.inf
     names: tuple[str, ...] = ()
 
     def check(self, level: Level) -> Level:

@@ -18,7 +18,7 @@ import numpy.typing as npt
 
 from mazesim._core import World
 from mazesim._sizes import index_array, number_array
-from mazesim.errors import _shown
+from mazesim.errors import MaybeInfinite, _shown
 
 __all__ = ["FloorPaint", "WallBoxes"]
 
@@ -210,7 +210,7 @@ class WallBoxes:
         directions: Floats,
         height: float,
         slopes: Floats,
-        untopped: float = math.inf,
+        untopped: MaybeInfinite = math.inf,
     ) -> tuple[Floats, npt.NDArray[np.intp], npt.NDArray[np.bool_]]:
         """As :meth:`cast_walls`, for rays that leave ``origin`` ``height`` above the floor and
         rise by ``slopes`` for each unit of their parameter (a metre across the floor for a
