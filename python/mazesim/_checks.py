@@ -73,6 +73,7 @@ __all__ = [
     "MOST_ITEMS",
     "SAMPLED_ITEMS",
     "annotations_of",
+    "answers_non_finite",
     "checked",
     "guard_module",
     "install",
@@ -941,6 +942,15 @@ class _Parameters:
             raise refusal_error(reason)(f"{self.func.__qualname__}: {name} refused: {reason}")
 
 
+def answers_non_finite(func: Callable[..., Any]) -> Callable[..., Any]:
+    """Marks ``func`` as answering NaN and infinities given for its numbers itself (with a
+    refusal of its own class, ``InvalidActionError`` for a command): the surface check lets
+    them through to it. A module does the same for all its functions with a module-level
+    ``_takes_nan = True`` (a wire format that carries any double), a class for its methods."""
+    func._takes_nan = True  # type: ignore[attr-defined]
+    return func
+
+
 def checked(
     func: Callable[..., Any], *, method: bool = False, takes_nan: bool = False
 ) -> Callable[..., Any]:
@@ -950,7 +960,7 @@ def checked(
     module's globals, so doctest and ``inspect`` see it as that module's function."""
     if is_checked(func):
         return func
-    parameters = _Parameters(func, method, takes_nan)
+    parameters = _Parameters(func, method, takes_nan or bool(getattr(func, "_takes_nan", False)))
     # The wrapper runs in func's globals: everything it uses is bound here.
     error, own, failures, text = InvalidArgumentError, MazesimError, _ARGUMENT_FAILURES, _TEXT
     wrong = WrongTypeError
@@ -1162,7 +1172,7 @@ def guard_module(module: types.ModuleType) -> None:
     for name in public_names(module):
         obj = getattr(module, name)
         if inspect.isfunction(obj):
-            setattr(module, name, checked(obj))
+            setattr(module, name, checked(obj, takes_nan=bool(getattr(module, "_takes_nan", 0))))
         elif inspect.isclass(obj):
             _guard_class(obj)
 

@@ -456,8 +456,10 @@ def _public(module: Any) -> Iterator[tuple[str, Any]]:
 
 
 def _signature(
-    target: Callable[..., Any], skip_first: bool, owner: type | None = None
+    target: Callable[..., Any], skip_first: bool, owner: Any = None
 ) -> EntryPoint | None:
+    """``target``'s entry point (no path yet); ``owner`` is its class or module, whose
+    ``_takes_nan`` says that it answers NaN and infinities itself."""
     try:
         params = list(inspect.signature(target).parameters.values())
     except (TypeError, ValueError):
@@ -500,7 +502,7 @@ def python_entry_points() -> list[EntryPoint]:
         for name, obj in _public(module):
             path = f"{module.__name__}:{name}"
             if not inspect.isclass(obj):
-                found[path] = _with_path(_signature(obj, False), path)
+                found[path] = _with_path(_signature(obj, False, module), path)
                 continue
             if not inspect.isabstract(obj):
                 found[path] = _with_path(_signature(obj, False), path)

@@ -35,6 +35,7 @@ from __future__ import annotations
 import math
 from typing import Any, NamedTuple
 
+from mazesim._checks import answers_non_finite
 from mazesim._core import RobotProfile, Simulator
 from mazesim.errors import InvalidActionError
 from mazesim.ros.occupancy import MAP_FRAME, MAP_RESOLUTION, MAP_TOPIC, occupied_cells
@@ -178,6 +179,7 @@ def body_velocity(
     )
 
 
+@answers_non_finite  # refused as an action (InvalidActionError), as every bad command is
 def twist_wheel_speeds(linear: float, angular: float, robot: RobotProfile) -> tuple[float, float]:
     """The (left, right) wheel speeds in rad/s that drive ``robot`` at a ``cmd_vel`` twist.
 

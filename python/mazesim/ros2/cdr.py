@@ -15,6 +15,10 @@ from collections.abc import Sequence
 
 from mazesim.errors import InvalidActionError
 
+#: A message carries any double, NaN and infinities included (a LaserScan's ranges, REP 117):
+#: the surface check lets them through to these encoders (``mazesim._checks``).
+_takes_nan = True
+
 __all__ = [
     "CdrReader",
     "CdrWriter",
