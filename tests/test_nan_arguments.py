@@ -194,3 +194,18 @@ def test_an_array_holding_nan_is_refused_where_no_nan_is_meant() -> None:
 
     world = mazesim.World.builtin("seed-maze")
     assert trajectory_limits(world, [0.0, np.nan, 1.0], [0.0, np.nan, 1.0]) is not None
+
+
+def test_a_wire_format_and_a_command_answer_nan_themselves() -> None:
+    """ROS 2's encoders carry any double (REP 117: a LaserScan's ranges may be NaN or
+    infinite); a twist refuses NaN as a bad command (``InvalidActionError``), its own class."""
+    from mazesim.ros.standard import twist_wheel_speeds
+    from mazesim.ros2 import cdr
+    from surface.registry import _signature
+
+    with pytest.raises(mazesim.InvalidActionError, match="on cmd_vel"):
+        twist_wheel_speeds(math.nan, 0.0, mazesim.RobotProfile.builtin("e-puck"))
+    scan = _signature(cdr.encode_laser_scan, False, cdr)  # (the walk leaves ROS modules out)
+    assert scan is not None and not scan.numbers and not scan.number_lists
+    ends = (0.0, 1.0, 0.1)
+    assert cdr.encode_laser_scan((0, 0), "scan", ends, (0.0, 0.0), (0.0, math.inf), [math.nan])
