@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import io
 from pathlib import Path
 
 import gymnasium
@@ -10,7 +11,7 @@ import numpy as np
 import pytest
 
 from mazesim.cli import main
-from mazesim.errors import InvalidArgumentError
+from mazesim.errors import MOST_MESSAGE, InvalidArgumentError
 from mazesim.render.live import LiveView, display_problem
 from mazesim.render.topdown import START_RGB, TRAIL_RGB
 from mazesim.replay import load_run
@@ -154,6 +155,18 @@ def test_render_shows_start_trail_and_an_overlay() -> None:
     # The overlay (dark box, white text) at the top left changes with the step number.
     assert not np.array_equal(first[:40, :160], later[:40, :160])
     env.close()
+
+
+def test_a_long_headless_notice_is_said_shortened() -> None:
+    # A notice of 100,000 characters was written whole (found by the surface walk, seed
+    # 20261214); it is said shortened as every message quoting a value is.
+    matplotlib.use("Agg")
+    stream = io.StringIO()
+    view = LiveView(stream=stream, headless_notice="no window: {problem}; " + "x" * 100_000)
+    assert view.headless
+    said = stream.getvalue()
+    assert said.startswith("no window: ") and "characters ...]" in said
+    assert len(said) <= MOST_MESSAGE + 100  # with the note of what was left out
 
 
 def test_human_mode_carries_on_headless_with_agg(capsys: pytest.CaptureFixture[str]) -> None:

@@ -17,7 +17,7 @@ from typing import Any, TextIO
 import numpy as np
 import numpy.typing as npt
 
-from mazesim.errors import _shown
+from mazesim.errors import MOST_MESSAGE, _shortened, _shown
 
 __all__ = [
     "LIVE_OPTION_NOTICE",
@@ -78,7 +78,9 @@ class LiveView:
         self._next_time: float | None = None
         if self.headless:
             out = stream if stream is not None else sys.stderr
-            out.write(headless_notice.format(problem=self.problem) + "\n")
+            # Said shortened past MOST_MESSAGE characters, as every message quoting a value is.
+            notice = _shortened(headless_notice.format(problem=self.problem), MOST_MESSAGE)
+            out.write(notice + "\n")
             out.flush()
 
     def show(self, frame: npt.NDArray[np.uint8]) -> None:

@@ -36,6 +36,20 @@ class DemoResult(NamedTuple):
     bag: Path
 
 
+def _stop(process: subprocess.Popen[str] | subprocess.Popen[bytes]) -> None:
+    """Ends ``process`` if it still runs: SIGTERM (a node's clean end), then SIGKILL after 10 s;
+    closes the pipe it wrote to (left open when the wait for it was interrupted)."""
+    if process.poll() is None:
+        process.send_signal(signal.SIGTERM)
+        try:
+            process.wait(timeout=10)
+        except subprocess.TimeoutExpired:
+            process.kill()
+            process.wait()
+    if process.stderr is not None:
+        process.stderr.close()
+
+
 def _command(*arguments: str) -> list[str]:
     return [sys.executable, "-m", "mazesim", "ros2", *arguments]
 
@@ -79,16 +93,14 @@ def run_demo(
     try:
         _, errors = bridge.communicate(timeout=DEMO_TIMEOUT_S)
     except subprocess.TimeoutExpired as error:
-        bridge.kill()
         raise MazesimError(
             f"expected the bridge to finish within {DEMO_TIMEOUT_S:.0f} s"
         ) from error
     finally:
-        driver.send_signal(signal.SIGTERM)
-        try:
-            driver.wait(timeout=10)
-        except subprocess.TimeoutExpired:
-            driver.kill()
+        # Neither node outlives the demo, however it ends (a timeout, Ctrl-C): a bridge left
+        # behind waited for a driver for its idle timeout, 10 minutes, writing to the terminal.
+        for process in (driver, bridge):
+            _stop(process)
     if bridge.returncode != 0:
         raise MazesimError(f"the bridge failed (exit {bridge.returncode}): {errors.strip()[-400:]}")
     stopped = re.search(r"stopped after (\d+) steps", errors)
