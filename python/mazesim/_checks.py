@@ -566,7 +566,7 @@ def _nan_item(value: Any, depth: int, budget: list[int], infinite: bool) -> tupl
         budget[0] -= 1
         if isinstance(item, np.ndarray):
             if _holds_nan(item, infinite):
-                return f"item {index}", _NOT_FINITE if infinite is False else _NAN
+                return f"item {index}", _NAN if infinite else _NOT_FINITE
         elif depth > 1 and isinstance(item, (list, tuple)):
             inner = _nan_item(item, depth - 1, budget, infinite)
             if inner is not None:

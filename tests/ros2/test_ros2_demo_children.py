@@ -33,7 +33,7 @@ def test_ctrl_c_during_the_demo_leaves_no_node_running(
     sleeper = [sys.executable, "-c", "import time; time.sleep(60)"]
     monkeypatch.setattr(demo, "_command", lambda *arguments: sleeper)
     monkeypatch.setattr(demo.subprocess, "Popen", recorded)
-    timer = threading.Timer(1.0, os.kill, (os.getpid(), signal.SIGINT))  # Ctrl-C
+    timer = threading.Timer(2.0, os.kill, (os.getpid(), signal.SIGINT))  # Ctrl-C
     timer.start()
     try:
         with pytest.raises(KeyboardInterrupt):

@@ -352,7 +352,7 @@ class LocalMaster(Closing):
 
     @staticmethod
     def stop_process(
-        process: subprocess.Popen[bytes], grace: float = 10.0, interrupted: bool = False
+        process: subprocess.Popen[Any], grace: float = 10.0, interrupted: bool = False
     ) -> int:
         """Stops one process: SIGINT, then SIGTERM and SIGKILL if it does not exit in time.
 

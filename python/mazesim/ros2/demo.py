@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import os
 import re
-import signal
 import subprocess
 import sys
 from pathlib import Path
@@ -20,6 +19,7 @@ from typing import NamedTuple
 from mazesim._paths import make_output_folder
 from mazesim.episodes import MAX_STEPS
 from mazesim.errors import MazesimError, MazesimIOError
+from mazesim.ros.local_master import LocalMaster
 from mazesim.ros.topics import demo_robot
 
 __all__ = ["DemoResult", "run_demo"]
@@ -34,20 +34,6 @@ class DemoResult(NamedTuple):
     steps: int
     goal_step: int | None
     bag: Path
-
-
-def _stop(process: subprocess.Popen[str] | subprocess.Popen[bytes]) -> None:
-    """Ends ``process`` if it still runs: SIGTERM (a node's clean end), then SIGKILL after 10 s;
-    closes the pipe it wrote to (left open when the wait for it was interrupted)."""
-    if process.poll() is None:
-        process.send_signal(signal.SIGTERM)
-        try:
-            process.wait(timeout=10)
-        except subprocess.TimeoutExpired:
-            process.kill()
-            process.wait()
-    if process.stderr is not None:
-        process.stderr.close()
 
 
 def _command(*arguments: str) -> list[str]:
@@ -89,8 +75,9 @@ def run_demo(
     bridge = subprocess.Popen(
         _command(*bridge_arguments), stderr=subprocess.PIPE, text=True, env=environment
     )
-    driver = subprocess.Popen(node, stderr=subprocess.DEVNULL, env=environment)
+    driver = None
     try:
+        driver = subprocess.Popen(node, stderr=subprocess.DEVNULL, env=environment)
         _, errors = bridge.communicate(timeout=DEMO_TIMEOUT_S)
     except subprocess.TimeoutExpired as error:
         raise MazesimError(
@@ -100,7 +87,10 @@ def run_demo(
         # Neither node outlives the demo, however it ends (a timeout, Ctrl-C): a bridge left
         # behind waited for a driver for its idle timeout, 10 minutes, writing to the terminal.
         for process in (driver, bridge):
-            _stop(process)
+            if process is not None:
+                LocalMaster.stop_process(process)  # SIGINT, then SIGTERM and SIGKILL
+        if bridge.stderr is not None:  # left open when the wait for it was interrupted
+            bridge.stderr.close()
     if bridge.returncode != 0:
         raise MazesimError(f"the bridge failed (exit {bridge.returncode}): {errors.strip()[-400:]}")
     stopped = re.search(r"stopped after (\d+) steps", errors)
