@@ -78,6 +78,37 @@ def test_a_run_that_ends_by_itself_or_by_ctrl_c_says_no_crash(tmp_path: Path) ->
     assert summary["reached_end"] is False and 0 < summary["simulated_seconds"] < 600
 
 
+#: Made outside the command (a script, the package's public surface): a normal exit is no crash.
+MADE_AND_LEFT = "from mazesim.cli.crash_guard import CrashWatch\nwatch = CrashWatch()\n"
+#: A controller that forks, its child going back through the command's end: one word, the parent's.
+FORKED = """import os
+from mazesim.cli.crash_guard import CrashWatch
+
+watch = CrashWatch()
+if os.fork() == 0:
+    watch.ended()
+    os._exit(0)
+os.wait()
+watch.ended()
+"""
+#: What the watch is for: a process killed by a signal.
+KILLED = MADE_AND_LEFT + "import os, signal\nos.kill(os.getpid(), signal.SIGKILL)\n"
+
+
+@pytest.mark.parametrize(
+    ("source", "crashed"),
+    [(MADE_AND_LEFT, False), (FORKED, False), (KILLED, True)],
+    ids=["made-and-left", "forked", "killed"],
+)
+def test_only_a_process_that_died_is_said_to_have_crashed(source: str, crashed: bool) -> None:
+    # The watcher holds stderr until it ends: communicate() waits for its word.
+    process = subprocess.run(
+        [sys.executable, "-c", source], capture_output=True, text=True, timeout=120
+    )
+    assert process.returncode == (-signal.SIGKILL if crashed else 0), process.stderr
+    assert process.stderr.count(WORDS) == int(crashed), process.stderr
+
+
 @pytest.mark.parametrize(
     ("arguments", "watched"),
     [

@@ -15,6 +15,7 @@ at its end are not written.
 
 from __future__ import annotations
 
+import atexit
 import os
 import signal
 from collections.abc import Sequence
@@ -48,10 +49,13 @@ def runs_a_controller_here(arguments: Sequence[str]) -> bool:
 
 class CrashWatch:
     """The watcher of one command (see the module): made before the command runs,
-    :meth:`ended` called however it ends by itself."""
+    :meth:`ended` called however it ends by itself. A process that ends normally without
+    calling it (a watch made outside the command) says it ended at its exit; a process forked
+    from the command's (a controller's ``os.fork``) never speaks for it."""
 
     def __init__(self) -> None:
         self._pipe: int | None = None
+        self._owner = os.getpid()
         if not hasattr(os, "fork"):  # a system without fork (Windows): the command runs unwatched
             return
         try:
@@ -64,17 +68,21 @@ class CrashWatch:
             _watch(read_end)
         os.close(read_end)
         self._pipe = write_end
+        atexit.register(self.ended)
 
     def ended(self) -> None:
-        """Tells the watcher that the command ended by itself (its exit status is its own)."""
+        """Tells the watcher that the command ended by itself (its exit status is its own); in a
+        process forked from the command's, only lets go of that process's end of the pipe."""
         if self._pipe is None:
             return
         try:
-            os.write(self._pipe, ENDED)
+            if os.getpid() == self._owner:
+                os.write(self._pipe, ENDED)
             os.close(self._pipe)
         except OSError:
             pass
         self._pipe = None
+        atexit.unregister(self.ended)
 
 
 def _watch(pipe: int) -> None:
