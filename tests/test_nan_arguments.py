@@ -17,7 +17,8 @@ Two mechanisms make the next such parameter right by construction:
   error and is ignored);
 - an array argument (annotated ``ArrayLike``, which may hold anything, infinite distances
   among them) is converted to floats only through ``mazesim._sizes.number_array``, which refuses
-  NaN unless the place says what a NaN means there (``nan_means="a gap in the path"``); the scan
+  NaN and infinities unless the place says what one means there (``nan_means="a gap in the
+  path"``, ``inf_means="nothing in range"``); the scan
   below fails on a function that hands one of its parameters to numpy with a float dtype. 54
   conversions in 22 modules once did (a few refusing NaN later), and a NaN front reading drove
   ``AvoidCollision`` straight on, ``HierarchicalPolicy.reset`` stored NaN poses.
@@ -194,6 +195,33 @@ def test_an_array_holding_nan_is_refused_where_no_nan_is_meant() -> None:
 
     world = mazesim.World.builtin("seed-maze")
     assert trajectory_limits(world, [0.0, np.nan, 1.0], [0.0, np.nan, 1.0]) is not None
+
+
+def test_an_array_holding_an_infinity_is_refused_where_none_is_meant() -> None:
+    """An infinite reading drove ``AvoidCollision`` as if nothing were near (-inf) or turned it
+    away from nothing (+inf); a number too large for float32 became one on conversion."""
+    from mazesim._sizes import number_array
+    from mazesim.barcode.odometry import WheelEncoders
+    from mazesim.controllers import AvoidCollision
+    from mazesim.learn.higher import HigherLevel
+    from mazesim.learn.policy import HierarchicalPolicy, lower_table_shape
+
+    for reading in (-math.inf, math.inf):
+        with pytest.raises(INVALID, match="expected distance_sensors as finite numbers"):
+            AvoidCollision()([reading, *[0.0] * 7])
+    with pytest.raises(INVALID, match=r"as finite numbers \(at most 3.4e\+38 in size\)"):
+        number_array([1e300], "speeds", np.float32)
+    with pytest.raises(INVALID, match="expected actions as finite numbers"):
+        WheelEncoders(mazesim.RobotProfile.builtin("e-puck"), 1, 64.0).step([[1e300, 0.0]])
+    policy = HierarchicalPolicy(np.zeros(lower_table_shape()), HigherLevel([[1]]), [0])
+    with pytest.raises(INVALID, match="expected poses as finite numbers"):
+        policy.reset([0], [[0.1, math.inf, 0.0]])
+    # Where an infinity means something, it is taken: a distance of nothing in range.
+    policy.reset([0], [[0.1, 0.1, 0.0]])
+    far = np.full((1, 6), math.inf)
+    assert policy.act_on_distances(far, [[0.1, 0.1, 0.0]], [0]).shape == (1,)
+    assert number_array([math.inf], "tops", inf_means="a wall of no top")[0] == math.inf
+    assert number_array([math.nan, math.inf], "x", checked_after=True).shape == (2,)
 
 
 def test_a_wire_format_and_a_command_answer_nan_themselves() -> None:

@@ -139,23 +139,42 @@ def whole_array(
 
 
 def number_array(
-    value: Any, name: str, dtype: npt.DTypeLike = np.float64, *, nan_means: str = ""
+    value: Any,
+    name: str,
+    dtype: npt.DTypeLike = np.float64,
+    *,
+    nan_means: str = "",
+    inf_means: str = "",
+    checked_after: bool = False,
 ) -> npt.NDArray[Any]:
-    """``value`` as an array of ``dtype`` numbers, refused when it holds NaN, unless
-    ``nan_means`` says what a NaN stands for there (a gap in a path, a reading not yet taken):
-    numpy takes NaN in without a word, and every comparison after it answers False, so a range
-    check downstream lets it through and a sum carries it on. Infinities are each function's own
-    to take or refuse.
+    """``value`` as an array of ``dtype`` numbers, refused when it holds NaN or an infinity,
+    unless ``nan_means`` (``inf_means``) says what a NaN (an infinity) stands for there: a gap
+    in a path, a reading not yet taken, a wall of no top. numpy takes both in without a word:
+    every comparison with NaN answers False, so a range check downstream lets it through and a
+    sum carries it on; an infinity turns a difference or a product with zero into NaN, and a
+    number too large for ``dtype`` (1e300 as float32) becomes one. ``checked_after``: the
+    caller refuses both itself, with a message that says more.
 
     Raises:
-        InvalidArgumentError: ``value`` holds a NaN where none is meant.
+        InvalidArgumentError: ``value`` holds a NaN or an infinity where none is meant.
         TypeError, ValueError: numpy cannot read ``value`` as numbers (at the public surface,
             :mod:`mazesim._checks` turns it into a refusal naming the argument).
     """
-    array = np.asarray(value, dtype=dtype)  # numpy's error: the surface check names the argument
-    held = getattr(getattr(value, "dtype", None), "kind", "f")  # bools and ints hold no NaN
-    if not nan_means and held in "fcO" and array.dtype.kind in "fc" and np.isnan(array).any():
+    with np.errstate(over="ignore"):  # a number too large for dtype: refused below, by name
+        array = np.asarray(value, dtype=dtype)  # numpy's error: the surface check names it
+    held = getattr(getattr(value, "dtype", None), "kind", "f")  # bools and ints: all finite
+    if checked_after or held not in "fcO" or array.dtype.kind not in "fc":
+        return array
+    if np.isfinite(array).all():
+        return array
+    if not nan_means and np.isnan(array).any():
         raise InvalidArgumentError(f"expected {name} as numbers, found NaN")
+    if not inf_means and np.isinf(array).any():
+        largest = f"{float(np.finfo(array.dtype).max):.3g}"
+        raise InvalidArgumentError(
+            f"expected {name} as finite numbers (at most {largest} in size), found an infinity "
+            "or a number beyond that"
+        )
     return array
 
 

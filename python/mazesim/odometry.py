@@ -36,7 +36,7 @@ def wrap_angle(angle: npt.ArrayLike) -> npt.NDArray[np.float64]:
         InvalidArgumentError: An angle is not finite (infinity has no direction: numpy's
             remainder would make it NaN with a warning).
     """
-    array = number_array(angle, "angle", nan_means="refused below, with infinities")
+    array = number_array(angle, "angle", checked_after=True)
     if not np.isfinite(array).all():
         found = float(array[~np.isfinite(array)].flat[0])
         raise InvalidArgumentError(f"expected finite angles in radians, found {_shown(found)}")
@@ -61,8 +61,8 @@ def advance(
         InvalidArgumentError: A travel is not finite, or the axle length not more than 0: the
             poses are left as they were.
     """
-    left_travel = number_array(left, "left", nan_means="refused below, with infinities")
-    right_travel = number_array(right, "right", nan_means="refused below, with infinities")
+    left_travel = number_array(left, "left", checked_after=True)
+    right_travel = number_array(right, "right", checked_after=True)
     for travel in (left_travel, right_travel):
         if not np.all(np.isfinite(travel)):
             found = travel[~np.isfinite(travel)].flat[0]

@@ -137,9 +137,7 @@ class CellAgent:
 
     def act(self, observation: npt.ArrayLike) -> npt.NDArray[np.float32]:
         """The wheel speeds (left, right, fractions of the motor limit) for ``observation``."""
-        values = number_array(
-            observation, "observation", nan_means="refused below, with infinities"
-        )
+        values = number_array(observation, "observation", checked_after=True)
         if values.shape != (self._width,) or not np.isfinite(values).all():
             found = f"shape {values.shape}" if values.shape != (self._width,) else "NaN or infinity"
             raise InvalidArgumentError(

@@ -390,10 +390,8 @@ def _goal_reward(
     achieved_goal: npt.ArrayLike, desired_goal: npt.ArrayLike, radius: float, reward_type: str
 ) -> npt.NDArray[np.float64] | float:
     """:meth:`MazeGoalEnv.compute_reward`."""
-    achieved = number_array(
-        achieved_goal, "achieved_goal", nan_means="refused below, with infinities"
-    )
-    desired = number_array(desired_goal, "desired_goal", nan_means="refused below, with infinities")
+    achieved = number_array(achieved_goal, "achieved_goal", checked_after=True)
+    desired = number_array(desired_goal, "desired_goal", checked_after=True)
     for name, goals in (("achieved_goal", achieved), ("desired_goal", desired)):
         if goals.shape[-1:] != (2,) or not np.isfinite(goals).all():
             found = f"shape {goals.shape}" if goals.shape[-1:] != (2,) else "NaN or infinity"

@@ -160,7 +160,7 @@ class HigherLearner:
             InvalidArgumentError: A reward is not finite (it would reach the table at the
                 decision's end), or there is not one per robot.
         """
-        values = number_array(rewards, "rewards", nan_means="refused below, with infinities")
+        values = number_array(rewards, "rewards", checked_after=True)
         if not np.all(np.isfinite(values)):
             found = values[~np.isfinite(values)].flat[0]
             raise InvalidArgumentError(f"expected finite rewards, found {found}")

@@ -147,7 +147,7 @@ class HierarchicalPolicy:
         event = whole_array(events, "events")
         record = self.record
         record.distances_cm = np.ascontiguousarray(
-            number_array(distances_cm, "distances_cm")
+            number_array(distances_cm, "distances_cm", inf_means="nothing in range")
         ).reshape(-1, NUM_SENSORS)
         record.event = event
         record.chosen[:] = -1
@@ -213,7 +213,9 @@ class DeadReckoningNavigator:
     def act(self, distances_cm: npt.ArrayLike, checkpoint: int) -> str:
         """The action code for six distances in cm (front, back, left, right, left-front,
         right-front) and the checkpoint event of the last step (+id, -id or 0)."""
-        distances = number_array(distances_cm, "distances_cm").reshape(1, NUM_SENSORS)
+        distances = number_array(
+            distances_cm, "distances_cm", inf_means="nothing in range"
+        ).reshape(1, NUM_SENSORS)
         action = int(
             self.policy.act_on_distances(distances, self.pose, np.array([int(checkpoint)]))[0]
         )

@@ -173,7 +173,7 @@ def batch_update(
     reward_array = np.ascontiguousarray(number_array(rewards, "rewards").ravel())
     factors = np.ascontiguousarray(
         np.broadcast_to(
-            number_array(bootstrap, "bootstrap", nan_means="refused below, out of [0, 1]").ravel(),
+            number_array(bootstrap, "bootstrap", checked_after=True).ravel(),
             (count,),
         ),
         dtype=np.float64,

@@ -175,6 +175,8 @@ class _FlatDriver:
     def act(self, distances_cm: npt.ArrayLike, checkpoint: int) -> str:
         from mazesim.learn.discretise import distance_levels
 
-        levels = distance_levels(number_array(distances_cm, "distances_cm").reshape(1, 6))
+        levels = distance_levels(
+            number_array(distances_cm, "distances_cm", inf_means="nothing in range").reshape(1, 6)
+        )
         state = self.navigator.states_from_levels(levels, np.array([int(checkpoint)]))
         return ACTION_CODES[int(np.argmax(self.navigator.q[state[0]]))]

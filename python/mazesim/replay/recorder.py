@@ -115,7 +115,11 @@ class EpisodeRecorder:
         the robot touches a wall, and the checkpoint event of the step that led here."""
         x, y, yaw = (float(v) for v in pose)
         self.poses.append((x, y, yaw))
-        self.readings.append(number_array(readings, "readings", nan_means="no reading yet").ravel())
+        self.readings.append(
+            number_array(
+                readings, "readings", nan_means="no reading yet", inf_means="a reading out of range"
+            ).ravel()
+        )
         self.ray_lengths.append(self.rays.lengths((x, y, yaw)))
         self.colliding.append(bool(colliding))
         self.events.append(int(event))

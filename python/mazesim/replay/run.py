@@ -406,7 +406,9 @@ SAVED_AND_REFUSED = "a misfit the read-back check refuses, by field"
 
 def _wall_boxes_json(boxes: npt.ArrayLike) -> list[list[int]]:
     """Wall boxes (N, 5 or more) as whole units: centre and size in 0.1 mm, yaw in mrad."""
-    array = number_array(boxes, "boxes", nan_means=SAVED_AND_REFUSED).reshape(-1, WALL_BOX_NUMBERS)
+    array = number_array(
+        boxes, "boxes", nan_means=SAVED_AND_REFUSED, inf_means=SAVED_AND_REFUSED
+    ).reshape(-1, WALL_BOX_NUMBERS)
     units = np.array([POSITION_UNIT] * 4 + [YAW_UNIT])
     whole: list[list[int]] = np.rint(array / units).astype(np.int64).tolist()
     return whole
@@ -414,7 +416,7 @@ def _wall_boxes_json(boxes: npt.ArrayLike) -> list[list[int]]:
 
 def _whole(values: npt.ArrayLike, unit: float) -> list[Any]:
     """Values as whole multiples of ``unit`` (nested lists for 2-D arrays)."""
-    array = number_array(values, "values", nan_means=SAVED_AND_REFUSED)
+    array = number_array(values, "values", nan_means=SAVED_AND_REFUSED, inf_means=SAVED_AND_REFUSED)
     whole: list[Any] = np.rint(array / unit).astype(np.int64).tolist()
     return whole
 

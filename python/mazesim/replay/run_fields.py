@@ -111,7 +111,8 @@ class RunFields:
         if not isinstance(value, list) or len(value) != rows:
             raise self.fail(field, expected, value)
         try:
-            array = number_array(value, field, nan_means="a misfit, refused below by its place")
+            misfit = "a misfit, refused below by its place"
+            array = number_array(value, field, nan_means=misfit, inf_means=misfit)
         except (ValueError, TypeError, OverflowError):  # InvalidArgumentError is a ValueError
             raise self._first_misfit(value, field, columns, bound) from None
         wanted_ndim = 1 if columns is None else 2

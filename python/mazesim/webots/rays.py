@@ -88,8 +88,8 @@ class WallBoxes:
         joined.disc_center = np.concatenate([self.disc_center, discs[:, 0:2]])
         joined.disc_radius = np.concatenate([self.disc_radius, discs[:, 2]])
         # Reflectances and tops: the boxes', then the cylinders'.
-        box_tops = number_array(box_tops, "box_tops").reshape(-1)
-        disc_tops = number_array(disc_tops, "disc_tops").reshape(-1)
+        box_tops = number_array(box_tops, "box_tops", inf_means="a solid of no top").reshape(-1)
+        disc_tops = number_array(disc_tops, "disc_tops", inf_means="a solid of no top").reshape(-1)
         joined.reflectance = np.concatenate(
             [self.reflectance[:count], boxes[:, 5], self.reflectance[count:], discs[:, 3]]
         )
@@ -480,7 +480,8 @@ class FloorPaint:
         Each region tests only the points in the grid cells its bounding box covers."""
         nowhere = "a point in no region"
         x, y = np.broadcast_arrays(
-            number_array(x, "x", nan_means=nowhere), number_array(y, "y", nan_means=nowhere)
+            number_array(x, "x", nan_means=nowhere, inf_means=nowhere),
+            number_array(y, "y", nan_means=nowhere, inf_means=nowhere),
         )
         px, py = x.ravel(), y.ravel()
         result = np.full(px.shape, -1, dtype=np.intp)
@@ -541,8 +542,9 @@ class _PaintGrid:
 
     def __init__(self, bounds: list[tuple[float, float, float, float]]) -> None:
         self.count = len(bounds)
+        unknown = "a box of no known bounds"
         boxes = np.array(
-            number_array(bounds, "bounds", nan_means="a box of no known bounds")
+            number_array(bounds, "bounds", nan_means=unknown, inf_means=unknown)
         ).reshape(-1, 4)
         #: Whether every box is finite; otherwise every point is every region's candidate.
         self.bounded = bool(np.isfinite(boxes).all())
