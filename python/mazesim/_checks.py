@@ -648,6 +648,11 @@ def _read_as_another_int(value: Any) -> bool:
 #: The most characters of a parameter's description a missing-argument message quotes.
 MOST_DESCRIBED = 300
 
+#: What a parameter takes with no check to make (:meth:`_Parameters._plain_kind`): any value;
+#: values that are no scalar, text or container (a device, a world); a 64-bit int; an int or a
+#: finite float; an int or a float but NaN; an int or any float.
+TAKES_ANY, TAKES_OPAQUE, TAKES_INT, TAKES_FINITE, TAKES_NOT_NAN, TAKES_ANY_FLOAT = range(6)
+
 
 def documented_argument(func: Callable[..., Any], name: str) -> str | None:
     """What the ``Args:`` section of ``func``'s docstring says of the parameter ``name``, on one
@@ -721,6 +726,9 @@ class _Parameters:
         self.infinite: set[str] = set()
         #: Whether any parameter is a list of ints or of numbers (an array may stand for one).
         self.any_items = False
+        #: Per positional parameter, the values it takes without a closer look
+        #: (:func:`_plain_kind`); None until prepared, or when a parameter has a length bound.
+        self.plainly: tuple[int, ...] | None = None
 
     def prepare(self) -> None:
         func = inspect.unwrap(self.func)
@@ -766,7 +774,24 @@ class _Parameters:
             if most is not None and not (index == 0 and self.skip_first):
                 position = index if p.kind is not p.KEYWORD_ONLY else 1 << 30
                 self.sized.append((position, p.name, most))
+        if not self.sized:
+            self.plainly = tuple(self._plain_kind(name, hint) for name, hint in self.positional)
         self.ready = True
+
+    def _plain_kind(self, name: str, hint: Any) -> int:
+        """Which values parameter ``name`` takes with no check to make (:data:`TAKES_ANY`...):
+        every value for ``Any``, a 64-bit int for ``int``, an int or a finite float for
+        ``float``; for any other annotation, values that are no scalar, text or container."""
+        if hint is Any:
+            return TAKES_ANY
+        simple = name not in self.int_items and name not in self.number_items
+        if hint is int and simple:
+            return TAKES_INT
+        if (hint is float or hint == MaybeInfinite) and simple:
+            if self.takes_nan:
+                return TAKES_ANY_FLOAT
+            return TAKES_NOT_NAN if name in self.infinite else TAKES_FINITE
+        return TAKES_OPAQUE
 
     def check_sizes(self, args: tuple[Any, ...], kwargs: dict[str, Any]) -> None:
         """Refuses, before the call, a sized argument longer than its bound."""
@@ -966,12 +991,40 @@ def checked(
     wrong = WrongTypeError
     scalars_or_containers = (*_SCALARS, np.floating, *_CONTAINERS)
     with_arrays = (*scalars_or_containers, np.ndarray)  # an array for a list of ints
+    opaque_not = (*with_arrays, *text, np.generic)  # what an opaque parameter checks closer
     tree = in_the_tree
     state = STATE  # per thread, whether a checked call is running
 
-    def wrapper(*args: Any, **kwargs: Any) -> Any:
-        if getattr(state, "inside", False):
-            return func(*args, **kwargs)  # called by the package itself: checked at the surface
+    def plainly_taken(args: tuple[Any, ...]) -> bool:
+        """Whether every argument is one its parameter takes with no check to make: the
+        common call (``drawPixel(3, 4)``, ``setVelocity(6.28)``) skips the checks below."""
+        kinds = parameters.plainly
+        if kinds is None or len(args) > len(kinds):
+            return False
+        for value, kind in zip(args, kinds):  # noqa: B905 - fewer values: defaults
+            if kind == TAKES_ANY:
+                continue
+            kind_of_value = type(value)
+            if kind_of_value is int:
+                if kind == TAKES_OPAQUE or (
+                    kind == TAKES_INT and not SMALLEST_INT <= value <= LARGEST_INT
+                ):
+                    return False
+            elif kind_of_value is float:
+                if kind == TAKES_FINITE:
+                    taken = value - value == 0.0  # NaN and the infinities give NaN
+                elif kind == TAKES_NOT_NAN:
+                    taken = value == value
+                else:
+                    taken = kind == TAKES_ANY_FLOAT
+                if not taken:
+                    return False
+            elif kind != TAKES_OPAQUE or isinstance(value, opaque_not):
+                return False
+        return True
+
+    def check_before(args: tuple[Any, ...], kwargs: dict[str, Any]) -> None:
+        """The checks made before the call: lengths, text, plain values."""
         if parameters.sized or not parameters.ready:
             parameters.check_sizes(args, kwargs)
         for value in (*args, *kwargs.values()) if kwargs else args:
@@ -985,6 +1038,12 @@ def checked(
                 if isinstance(value, kinds):
                     parameters.check_scalars(args, kwargs)
                     break
+
+    def wrapper(*args: Any, **kwargs: Any) -> Any:
+        if getattr(state, "inside", False):
+            return func(*args, **kwargs)  # called by the package itself: checked at the surface
+        if kwargs or not plainly_taken(args):
+            check_before(args, kwargs)
         state.inside = True
         try:
             return func(*args, **kwargs)
