@@ -161,6 +161,26 @@ def test_stock_object_without_a_file_gets_a_named_stand_in(
         assert (centre[0] ** 2 + centre[1] ** 2) ** 0.5 == pytest.approx(0.505, abs=1e-6)
 
 
+def test_a_stock_object_without_a_file_or_a_stand_in_says_how_to_have_it_read(
+    monkeypatch: pytest.MonkeyPatch, tmp_path: Path
+) -> None:
+    """Webots' own PROTO that cannot be read offline and has no stand-in: one warning for all its
+    instances says why none is imported and where to put the file (it said only "an unknown
+    PROTO", as for a type no file declares)."""
+    monkeypatch.setenv("MAZESIM_OFFLINE", "1")
+    url = "https://raw.githubusercontent.com/cyberbotics/webots/R2023a/projects/objects/solids/protos/SolidPipe.proto"
+    text = (
+        f'#VRML_SIM R2023b utf8\nEXTERNPROTO "{url}"\n'
+        "SolidPipe { translation 0.2 0 0 }\nSolidPipe { translation -0.2 0 0 }\n"
+    )
+    _, report = import_wbt_text(text, str(tmp_path / "pipes.wbt"))
+    said = [w for w in report["warnings"] if "has no stand-in" in w]
+    assert len(said) == 1, report["warnings"]
+    assert "SolidPipe" in said[0] and url in said[0]
+    assert "protos/ folder" in said[0] and "WEBOTS_HOME" in said[0]
+    assert "SolidPipe" not in report["protos"]["stand_ins"]
+
+
 def test_webots_home_is_searched_before_a_stand_in(
     monkeypatch: pytest.MonkeyPatch, tmp_path: Path
 ) -> None:

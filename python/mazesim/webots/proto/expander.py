@@ -239,13 +239,18 @@ class Expander:
                     )
             if source is None:
                 source = self.resolver.undeclared(name)
-        except ProtoUnavailableError:
+        except ProtoUnavailableError as unavailable:
             official = url is not None and (
                 url.startswith("webots://") or "cyberbotics/webots/" in url
             )
             if not official:
                 raise
             source = None  # Webots' own PROTO while offline: a stand-in, if mazesim has one
+            if name not in STAND_INS:  # said once for all its instances: how to have it read
+                self._say(
+                    f"{where}: Webots' {name} PROTO cannot be read and mazesim has no stand-in "
+                    f"for it, so no {name} is imported: {unavailable}"
+                )
         except (OSError, UnicodeError, ValueError) as error:
             # Not a MazesimError: a location the file system cannot even look up.
             self._say(f"{where}: its PROTO file cannot be read ({error}); not expanded")
