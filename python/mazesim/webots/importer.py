@@ -463,6 +463,22 @@ def _world_text(file: str) -> str | None:
         return None
 
 
+def _say_how_to_read(warnings: list[str], unreadable: Mapping[str, str]) -> None:
+    """Before the first of the core's "an unknown PROTO" warnings of each type of Webots' own
+    that could not be read and has no stand-in, one that says so and where to put its file: the
+    core's alone read as if no file declared the type. A type the core knows itself (the
+    Pi-puck board) has no such warning, and gets none."""
+    for name, why in unreadable.items():
+        dropped = re.compile(rf'(^|: ){re.escape(name)}( "[^"]*")?: an unknown PROTO: ')
+        lost = [i for i, warning in enumerate(warnings) if dropped.search(warning)]
+        if lost:
+            warnings.insert(
+                lost[0],
+                f"{name}: Webots' {name} PROTO cannot be read and mazesim has no stand-in for "
+                f"it, so its {len(lost)} instance(s) below are not imported: {why}",
+            )
+
+
 def import_wbt_text(
     text: str,
     source: str = "<string>",
@@ -510,6 +526,7 @@ def import_wbt_text(
 
     world, report = _with_floor(imported(), imported, world_resolver(text, source))
     report["warnings"][:0] = protos.warnings
+    _say_how_to_read(report["warnings"], protos.unreadable)
     report["protos"] = {
         "expanded": protos.expanded,
         "stand_ins": protos.stand_ins,

@@ -77,6 +77,10 @@ class ExpansionReport:
     expanded: dict[str, str] = field(default_factory=dict)
     #: PROTO types replaced by mazesim's stand-in, with the stand-in's description.
     stand_ins: dict[str, str] = field(default_factory=dict)
+    #: Webots' own PROTO types that could not be read (offline, no cache, no WEBOTS_HOME) and
+    #: have no stand-in, with why and where to put the file: left to the core, which may
+    #: know the type itself (the Pi-puck board) or drop its instances.
+    unreadable: dict[str, str] = field(default_factory=dict)
     #: Warnings, one sentence each, with their line in the world.
     warnings: list[str] = field(default_factory=list)
     #: URLs read from the download cache, and URLs downloaded.
@@ -246,11 +250,8 @@ class Expander:
             if not official:
                 raise
             source = None  # Webots' own PROTO while offline: a stand-in, if mazesim has one
-            if name not in STAND_INS:  # said once for all its instances: how to have it read
-                self._say(
-                    f"{where}: Webots' {name} PROTO cannot be read and mazesim has no stand-in "
-                    f"for it, so no {name} is imported: {unavailable}"
-                )
+            if name not in STAND_INS:
+                self.report.unreadable[name] = str(unavailable)
         except (OSError, UnicodeError, ValueError) as error:
             # Not a MazesimError: a location the file system cannot even look up.
             self._say(f"{where}: its PROTO file cannot be read ({error}); not expanded")
