@@ -172,11 +172,12 @@ def test_a_stock_object_without_a_file_or_a_stand_in_says_how_to_have_it_read(
     text = (
         f'#VRML_SIM R2023b utf8\nEXTERNPROTO "{url}"\n'
         "SolidPipe { translation 0.2 0 0 }\nSolidPipe { translation -0.2 0 0 }\n"
+        "E-puck { turretSlot [ SolidPipe { } ] }\n"
     )
     _, report = import_wbt_text(text, str(tmp_path / "pipes.wbt"))
     said = [w for w in report["warnings"] if "has no stand-in" in w]
     assert len(said) == 1, report["warnings"]
-    assert "SolidPipe" in said[0] and url in said[0] and "its 2 instance(s)" in said[0]
+    assert "SolidPipe" in said[0] and url in said[0] and "its 3 instance(s)" in said[0]
     assert "protos/ folder" in said[0] and "WEBOTS_HOME" in said[0]
     assert "SolidPipe" not in report["protos"]["stand_ins"]
     # A type the core knows itself (Webots' Pi-puck board, in an e-puck's turret) gets none.

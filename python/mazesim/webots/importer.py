@@ -464,13 +464,18 @@ def _world_text(file: str) -> str | None:
 
 
 def _say_how_to_read(warnings: list[str], unreadable: Mapping[str, str]) -> None:
-    """Before the first of the core's "an unknown PROTO" warnings of each type of Webots' own
-    that could not be read and has no stand-in, one that says so and where to put its file: the
-    core's alone read as if no file declared the type. A type the core knows itself (the
-    Pi-puck board) has no such warning, and gets none."""
+    """Before the first of the core's warnings that an instance of a type of Webots' own that
+    could not be read (and has no stand-in) is not imported, one that says so and where to put
+    its file: the core's alone ("an unknown PROTO", "not a device mazesim lists") read as if no
+    file declared the type. A type the core knows itself (the Pi-puck board) has no such
+    warning, and gets none."""
     for name, why in unreadable.items():
-        dropped = re.compile(rf'(^|: ){re.escape(name)}( "[^"]*")?: an unknown PROTO: ')
-        lost = [i for i, warning in enumerate(warnings) if dropped.search(warning)]
+        about = re.compile(rf'(^|: ){re.escape(name)}( "[^"]*")?: ')
+        lost = [
+            i
+            for i, warning in enumerate(warnings)
+            if "not imported" in warning and about.search(warning)
+        ]
         if lost:
             warnings.insert(
                 lost[0],
