@@ -33,6 +33,7 @@ from mazesim.webots.devices import (
 )
 from mazesim.webots.differential_drive import EPUCK_WHEELS, DifferentialDrive
 from mazesim.webots.distance_rays import MOST_RAYS
+from mazesim.webots.frames import axes_or_none, camera_heading
 from mazesim.webots.inert import Display, Pen, Speaker
 from mazesim.webots.joints import JointMotor, JointPositionSensor, LinearJointMotor, pair_joints
 from mazesim.webots.keyboard import Joystick, Keyboard, Mouse
@@ -123,6 +124,9 @@ _RESOLVED_KINDS = frozenset(
 )
 #: The devices whose reading depends on their axes on the robot when a mount tilts them.
 _TILTED_KINDS = _DEVICE_FRAME_KINDS | {"InertialUnit", "DistanceSensor"}
+#: The devices that look along their -z axis in a file before R2022a, as a Camera does there
+#: (Webots' Y-up device frame: x right, y up, z back), and along their x axis since.
+_LOOKING_KINDS = frozenset({"Lidar", "RangeFinder"})
 
 
 #: The E-puck PROTO's names of its wheels' motors and position sensors, left first.
@@ -221,6 +225,11 @@ def extension_device(simulation: RobotSimulation, entry: Mapping[str, Any]) -> D
         # in a frame whose x is the robot's right when unturned (forward is its -z), which the
         # reading converts from the robot's frame: its forward is a quarter turn left of x.
         yaw += math.pi / 2
+    axes = axes_or_none(entry.get("axes"))
+    if simulation.scene.y_up_devices and kind in _LOOKING_KINDS and axes is not None:
+        forward = (-axes[2][0], -axes[2][1], -axes[2][2])
+        yaw, pitch = camera_heading(forward)
+        entry = {**entry, "pitch": pitch}
     mount = _device_mount(simulation, entry, yaw, kind in _TILTED_KINDS)
     table = _table(fields)
     e_puck_sensor = fields.get("model") == EPUCK_DISTANCE_SENSOR_MODEL
