@@ -139,3 +139,42 @@ def test_a_c_controller_of_a_plain_robot_is_refused_the_supervisor_functions(
     assert ends in done.stdout.splitlines()
     refusal = "ignoring illegal call to wb_supervisor_node_get_from_def()" in done.stderr
     assert refusal is (ends == "refused")
+
+
+@NEEDS_COMPILERS
+@pytest.mark.usefixtures("own_cache")
+def test_a_c_controllers_vector_of_no_node_is_webots_nans_not_null(tmp_path: Path) -> None:
+    """Webots' node getters give a vector of NaNs for a NULL node (libController's
+    ``invalid_vector``), never NULL: a course supervisor that looks twenty boxes up by DEF names
+    its world gives two of reads NaN for the others and goes on, where it crashed on NULL."""
+    getters = {
+        "position": "wb_supervisor_node_get_position(missing)[2]",
+        "orientation": "wb_supervisor_node_get_orientation(missing)[8]",
+        "pose": "wb_supervisor_node_get_pose(missing, NULL)[15]",
+        "centre": "wb_supervisor_node_get_center_of_mass(missing)[2]",
+        "velocity": "wb_supervisor_node_get_velocity(missing)[5]",
+    }
+    reads = "".join(
+        f'  printf("{name} %s\\n", isnan({call}) ? "nan" : "number");\n'
+        for name, call in getters.items()
+    )
+    done = run_seeker(
+        tmp_path,
+        GRANTED,
+        "#include <math.h>\n#include <stdio.h>\n#include <webots/robot.h>\n"
+        "#include <webots/supervisor.h>\n"
+        "int main() {\n  wb_robot_init();\n  wb_robot_step(32);\n"
+        '  WbNodeRef missing = wb_supervisor_node_get_from_def("NOWHERE");\n'
+        f"{reads}"
+        '  WbNodeRef box = wb_supervisor_node_get_from_def("GOAL");\n'
+        "  const double *goal = wb_supervisor_node_get_position(box);\n"
+        '  printf("goal %.2f %.2f\\n", goal[0], goal[1]);\n'
+        "  wb_robot_cleanup();\n  return 0;\n}\n",
+        ".c",
+    )
+    assert done.returncode == 0, done.stderr
+    lines = done.stdout.splitlines()
+    read = [line for line in lines if line.split(" ")[0] in getters]
+    assert read == [f"{name} nan" for name in getters]
+    assert "goal 0.30 0.20" in lines
+    assert "called with a NULL" in done.stderr

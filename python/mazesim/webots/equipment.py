@@ -124,6 +124,10 @@ _RESOLVED_KINDS = frozenset(
 )
 #: The devices whose reading depends on their axes on the robot when a mount tilts them.
 _TILTED_KINDS = _DEVICE_FRAME_KINDS | {"InertialUnit", "DistanceSensor"}
+#: A LightSensor node's default ``lookupTable`` (Webots' reference manual, LightSensor): 1 W/m^2
+#: reads 1000, without noise. The node's Accelerometer and Gyro have an empty one (the raw
+#: value); the E-puck PROTO's own ls0-ls7, accelerometer and gyro carry tables of their own.
+LIGHT_NODE_TABLE = ((0.0, 0.0, 0.0), (1.0, 1000.0, 0.0))
 #: The devices that look along their -z axis in a file before R2022a, as a Camera does there
 #: (Webots' Y-up device frame: x right, y up, z back), and along their x axis since.
 _LOOKING_KINDS = frozenset({"Lidar", "RangeFinder"})
@@ -241,8 +245,8 @@ def extension_device(simulation: RobotSimulation, entry: Mapping[str, Any]) -> D
     builders: dict[str, Callable[[], Device]] = {
         "GPS": lambda: GPS(name, simulation, mount, table),
         "Compass": lambda: Compass(name, simulation, mount, table, north),
-        "Accelerometer": lambda: Accelerometer(name, simulation, mount, table),
-        "Gyro": lambda: Gyro(name, simulation, mount, table),
+        "Accelerometer": lambda: Accelerometer(name, simulation, mount, table or ()),
+        "Gyro": lambda: Gyro(name, simulation, mount, table or ()),
         "InertialUnit": lambda: InertialUnit(name, simulation, mount, None),
         "TouchSensor": lambda: TouchSensor(name, simulation, mount, _bumper(simulation, name)),
         "DistanceSensor": lambda: RayDistanceSensor(
@@ -256,11 +260,7 @@ def extension_device(simulation: RobotSimulation, entry: Mapping[str, Any]) -> D
             _ray_count(fields),
             _number_field(fields, "gaussianWidth", 1.0),
         ),
-        "LightSensor": lambda: (
-            LightSensor(name, simulation, table, mount)
-            if table
-            else LightSensor(name, simulation, mount=mount)
-        ),
+        "LightSensor": lambda: LightSensor(name, simulation, table or LIGHT_NODE_TABLE, mount),
         "LED": lambda: LED(name, simulation),
         "Camera": lambda: Camera(name, simulation, _camera_view(simulation, entry)),
         "Emitter": lambda: emitter_from_fields(name, simulation, fields, entry.get("axes")),

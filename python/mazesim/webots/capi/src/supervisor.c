@@ -2,6 +2,7 @@
    mazesim's Python Supervisor over the link: mazesim numbers each node and field it hands out
    (a handle, 1, 2...), and the library keeps one reference per handle, with room for the
    strings and vectors the functions return. */
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -335,11 +336,17 @@ int wb_supervisor_node_get_number_of_fields(WbNodeRef node) {
   return answer_type(0) == VALUE_NONE ? -1 : answer_int(0);
 }
 
+/* What Webots' node getters give for a NULL node or a node without the vector (a position of a
+   node that is no Transform): 16 NaNs, never NULL, so a controller that reads it goes on. */
+static const double no_vector[16] = {NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN,
+                                     NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN};
+
 /* A vector of a node, asked each time (a node moves) and kept in `into`. */
 static const double *node_vector(WbNodeRef node, double *into, int count, const char *function) {
   call_node(function, node);
   call_end();
-  return node ? numbers(into, count) : NULL;
+  const double *values = node ? numbers(into, count) : NULL;
+  return values ? values : no_vector;
 }
 
 const double *wb_supervisor_node_get_position(WbNodeRef node) {
@@ -364,7 +371,8 @@ const double *wb_supervisor_node_get_pose(WbNodeRef node, WbNodeRef from_node) {
   call_node("wb_supervisor_node_get_pose", node);
   call_int(from_node ? from_node->handle : 0);
   call_end();
-  return node ? numbers(node->pose, 16) : NULL;
+  const double *values = node ? numbers(node->pose, 16) : NULL;
+  return values ? values : no_vector;
 }
 
 void wb_supervisor_node_set_velocity(WbNodeRef node, const double velocity[6]) {
