@@ -8,9 +8,11 @@ world each wall stands from the floor to its top (the import writes it; a wall o
 world without a ``height`` stands above every ray) and there is no ceiling: a ray tilted up or
 down by ``e`` meets a wall at horizontal distance ``h`` after ``h / cos(e)`` where it crosses the
 wall below its top (it passes over a lower wall, or meets the top of one it falls onto), and a
-ray tilted down from height ``z`` meets the floor ``z / sin(e)`` along it. A lidar's points go
-from the left of its field of view to the right (``fieldOfView / 2`` down to ``-fieldOfView / 2
-+ step`` about its z axis), its layers from the top; a range finder's pixels give the depth
+ray tilted down from height ``z`` meets the floor ``z / sin(e)`` along it. A lidar looks along
+its x axis, or its -z axis in a world before R2022a (as a Camera there; the mount's heading,
+:func:`mazesim.webots.equipment.extension_device`); its points go from the left of its field of
+view to the right (``fieldOfView / 2`` down to ``-fieldOfView / 2 + step`` about its up axis),
+its layers from the top; a range finder's pixels give the depth
 along its axis (a flat wall ahead reads the same depth across the image), its rows the same as
 its middle row. Distances beyond
 ``maxRange`` read ``inf``, as in Webots.
