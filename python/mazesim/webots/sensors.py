@@ -397,7 +397,8 @@ class InertialUnit(_TableVector):
 
 class LightSensor(_Tabled, _ScalarSensor):
     """Light: the irradiance from the world's lights (:mod:`mazesim.webots.lights`) where the
-    sensor is, facing its direction, through the PROTO's table."""
+    sensor is, facing its direction, through its table: the E-puck PROTO's for ls0-ls7, a
+    world-added node's own ``lookupTable`` or Webots' node default (``equipment``)."""
 
     _node_type = node_type("LIGHT_SENSOR")
 
