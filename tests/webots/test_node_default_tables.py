@@ -3,7 +3,8 @@ its node's default table (Webots' reference manual: a LightSensor's ``[0 0 0, 1 
 Accelerometer's and a Gyro's empty table, the raw value without noise), not through the E-puck
 PROTO's tables for its own ls0-ls7, accelerometer and gyro (``[1 4095 0.01, 2 0 0.01]``,
 ``[-100 -100 0.003, 100 100 0.003]``, ``[-13.3 -100000 0.003, 13.3 100000 0.003]``), which made
-a turret light sensor read 4095 in the dark and fall as the light grew.
+a turret light sensor read 4095 in the dark and fall as the light grew. An empty ``lookupTable []``
+is no table, not the default one.
 """
 
 from __future__ import annotations
@@ -53,3 +54,26 @@ def test_an_accelerometer_and_a_gyro_without_a_table_read_raw_values(tmp_path: P
     assert (x, y) == pytest.approx((0.0, 0.0), abs=1e-9)
     assert z == pytest.approx(9.81, abs=1e-6)
     assert gyro.getValues() == pytest.approx([0.0, 0.0, 0.0], abs=1e-9)
+
+
+@pytest.mark.usefixtures("fresh_robot")
+def test_an_empty_table_is_no_table_not_the_default_one(tmp_path: Path) -> None:
+    # Webots' lookup of an empty table gives its input back (WbLookupTable::lookup): a
+    # LightSensor with `lookupTable []` reads the raw irradiance; a DistanceSensor with one
+    # reads 0 (WbDistanceSensor::computeValue), where one without the field reads through
+    # the node default [0 0 0, 0.1 1000 0] (1000 with nothing ahead).
+    light = "PointLight { location 0.4 0 0.05 intensity 0.25 attenuation 1 0 0 }\n"
+    devices = (
+        'LightSensor { name "raw eye" lookupTable [] } '
+        'DistanceSensor { name "no table" lookupTable [] } '
+        'DistanceSensor { name "default table" }'
+    )
+    robot = supervisor_in(tmp_path, _world(devices, light), noise=True)
+    eye, empty, plain = (robot.getDevice(n) for n in ("raw eye", "no table", "default table"))
+    for device in (eye, empty, plain):
+        device.enable(16)
+    robot.step(16)
+    assert eye.getLookupTable() == [] and empty.getLookupTable() == []
+    assert eye.getValue() == pytest.approx(0.25, abs=0.01)
+    assert empty.getValue() == 0.0 and empty.getMaxValue() == 0.0
+    assert plain.getValue() == pytest.approx(1000.0)

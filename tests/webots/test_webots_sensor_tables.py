@@ -164,6 +164,27 @@ def test_an_e_puck_proto_keeps_its_proto_stable_text() -> None:
     assert own.profile == RobotProfile.builtin("e-puck").with_infrared_elevation(0.16)
 
 
+def test_an_empty_lookup_table_reads_0_as_webots_reads_through_no_table(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    # WbDistanceSensor::computeValue: an empty table gives 0, whatever the ray meets (ps0 and
+    # ps7 face the wall 2 cm ahead); not a refused table read through the profile's.
+    text = plain_robot_world(PROXIMITY_TABLE)
+    for name in ("ps0", "ps7"):
+        text = text.replace(
+            f'name "{name}" lookupTable [ {table_text(PROXIMITY_TABLE)} ]',
+            f'name "{name}" lookupTable [ ]',
+        )
+    capsys.readouterr()
+    readings, robot = front_readings(text)
+    assert "lookupTable" not in capsys.readouterr().err
+    assert readings[0] == readings[7] == 0.0
+    assert 100.0 < readings[1] < 4095.0  # ps1 keeps its own table: the wall at 45 degrees
+    ps0 = robot.getDevice("ps0")
+    assert ps0.getLookupTable() == [] and ps0.getMaxValue() == 0.0
+    assert robot.getDevice("ps1").getLookupTable() == [v for row in PROXIMITY_TABLE for v in row]
+
+
 def test_a_lookup_table_not_of_rows_of_three_warns_naming_the_sensor(
     capsys: pytest.CaptureFixture[str],
 ) -> None:

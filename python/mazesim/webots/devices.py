@@ -520,10 +520,10 @@ class DistanceSensor(_Tabled, _ScalarSensor):
 
     Readings are the raw values of Webots' e-puck model (about 4095 touching, 67 at 7 cm and
     beyond; ground: about 856 on white, 300 on black), or of the world's own ``lookupTable``
-    of the sensor (:attr:`RobotSimulation.sensor_tables`); the e-puck2's ``tof`` reads its
-    distance in millimetres. ``getLookupTable``, ``getMinValue``, ``getMaxValue`` and the
-    ranges come from the table the simulator reads the sensor with
-    (:func:`profile_sensor_models`).
+    of the sensor (:attr:`RobotSimulation.sensor_tables`; 0 through an empty one, as Webots
+    reads then); the e-puck2's ``tof`` reads its distance in millimetres. ``getLookupTable``,
+    ``getMinValue``, ``getMaxValue`` and the ranges come from the table the simulator reads
+    the sensor with (:func:`profile_sensor_models`).
     """
 
     _node_type = node_type("DISTANCE_SENSOR")
@@ -542,10 +542,14 @@ class DistanceSensor(_Tabled, _ScalarSensor):
         # when the simulation reads through that, else its model's in the robot's profile (a
         # world of several robots gives each robot's process the built-in profile alone).
         kind, table = profile_sensor_models(simulation.simulator.robot)[ground][index]
-        self._table = LookupTable(simulation.sensor_tables.get(name) or table)
+        own = simulation.sensor_tables.get(name)
+        self._table = LookupTable(table if own is None else own)
         self._kind = kind
 
     def _read(self) -> float:
+        if not self._table.rows:
+            # ``lookupTable []``: Webots' DistanceSensor reads 0 through no table.
+            return 0.0
         readings = (
             self._simulation.ground_readings()
             if self._ground

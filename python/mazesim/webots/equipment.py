@@ -79,9 +79,10 @@ def _names(profile: Any, attribute: str) -> list[str]:
 
 
 def _table(fields: Mapping[str, Any]) -> list[list[float]] | None:
-    """A lookupTable field as rows of numbers (rows, or Webots' flat list), or None."""
+    """A lookupTable field as rows of numbers (rows, or Webots' flat list), or None where the
+    node has none; an empty one (``lookupTable []``) is kept: Webots reads through no table."""
     raw = fields.get("lookupTable")
-    if not isinstance(raw, Sequence) or not raw:
+    if not isinstance(raw, Sequence) or isinstance(raw, str):
         return None
     if all(isinstance(row, Sequence) for row in raw):
         return [[float(v) for v in row] for row in raw]
@@ -260,7 +261,9 @@ def extension_device(simulation: RobotSimulation, entry: Mapping[str, Any]) -> D
             _ray_count(fields),
             _number_field(fields, "gaussianWidth", 1.0),
         ),
-        "LightSensor": lambda: LightSensor(name, simulation, table or LIGHT_NODE_TABLE, mount),
+        "LightSensor": lambda: LightSensor(
+            name, simulation, LIGHT_NODE_TABLE if table is None else table, mount
+        ),
         "LED": lambda: LED(name, simulation),
         "Camera": lambda: Camera(name, simulation, _camera_view(simulation, entry)),
         "Emitter": lambda: emitter_from_fields(name, simulation, fields, entry.get("axes")),

@@ -69,7 +69,9 @@ class OwnSensors:
 
     Attributes:
         tables: The world's lookup tables the robot's sensors read through, by sensor name:
-            those that differ from the profile's and that the profile format takes.
+            those that differ from the profile's and that the profile format takes, and the
+            empty ones (``lookupTable []``: the sensor reads 0, as Webots' DistanceSensor reads
+            through no table; the profile keeps its own table for it).
         poses: The world's poses of the robot's sensors, by sensor name, where they differ from
             the profile's: x, y (m) and, for a distance sensor, the heading of its ray (rad).
         elevations: How far each distance sensor's ray is tilted from the floor's plane (rad,
@@ -124,6 +126,9 @@ def own_sensors(name: str, scene: Scene | None) -> OwnSensors:
         table = scene.sensor_tables.get(sensor["name"])
         if table is None or [tuple(row) for row in models[sensor["model"]]["table"]] == table:
             continue
+        if not table:
+            tables[sensor["name"]] = table
+            continue
         try:
             _profile_with(layout, {sensor["name"]: table})
         except MazesimError as error:
@@ -150,8 +155,10 @@ def own_sensors(name: str, scene: Scene | None) -> OwnSensors:
             f"its own two wheels do not drive it: {scene.drive_refused}; the e-puck's wheels "
             "and body stand in for them"
         )
-    changed = tables or poses or elevations or types or scene.drive
-    profile = _profile_with(layout, tables, poses, elevations, set(types)) if changed else None
+    # An empty table reads 0 through the device alone: the profile keeps its own for it.
+    rows = {name: table for name, table in tables.items() if table}
+    changed = rows or poses or elevations or types or scene.drive
+    profile = _profile_with(layout, rows, poses, elevations, set(types)) if changed else None
     return OwnSensors(tables, poses, elevations, types, profile, warnings)
 
 

@@ -622,6 +622,8 @@ def _rows_of_three(table: Field) -> list[Row] | None:
     """A ``lookupTable`` field's numbers as rows of 3, or None when they are not."""
     inside = Field(table.name, table.start, table.end, table.nodes)
     inside.tokens = [t for t in table.tokens if t.kind not in ("[", "]")]
+    if not inside.tokens:
+        return []  # ``lookupTable []``: no table (Webots' DistanceSensor then reads 0)
     numbers = inside.numbers()
     if numbers is None or len(numbers) % 3 != 0:
         return None

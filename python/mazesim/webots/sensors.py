@@ -398,7 +398,8 @@ class InertialUnit(_TableVector):
 class LightSensor(_Tabled, _ScalarSensor):
     """Light: the irradiance from the world's lights (:mod:`mazesim.webots.lights`) where the
     sensor is, facing its direction, through its table: the E-puck PROTO's for ls0-ls7, a
-    world-added node's own ``lookupTable`` or Webots' node default (``equipment``)."""
+    world-added node's own ``lookupTable`` (none where it is empty: the irradiance itself) or
+    Webots' node default (``equipment``)."""
 
     _node_type = node_type("LIGHT_SENSOR")
 
@@ -610,7 +611,7 @@ class RayDistanceSensor(DistanceSensor):
         self._aperture = aperture
         self._red_sensitivity = red_sensitivity
         self._mount = mount
-        self._table = LookupTable(DISTANCE_TABLE if not table else table)
+        self._table = LookupTable(DISTANCE_TABLE if table is None else table)
         self._type = read_sensor_type(sensor_type)
         self._rays = DistanceRays.of(rays, aperture, gaussian_width, self._type)
         # Each ray's heading from the mount's and its pitch down, in the robot's frame.
@@ -620,7 +621,10 @@ class RayDistanceSensor(DistanceSensor):
 
     def _read(self) -> float:
         """Each ray from the mount (:meth:`_hits`), made one distance as the sensor's type makes
-        it (:func:`~mazesim.webots.distance_rays.sensor_distance`), through the table."""
+        it (:func:`~mazesim.webots.distance_rays.sensor_distance`), through the table; 0
+        through an empty one (``lookupTable []``), as Webots' DistanceSensor reads then."""
+        if not self._table.rows:
+            return 0.0
         reach = self.getMaxRange()
         d = sensor_distance(self._type, self._rays, self._hits(), reach, self._red_sensitivity)
         return self._table(min(d, reach), self._rng)

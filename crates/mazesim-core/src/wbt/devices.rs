@@ -620,7 +620,10 @@ impl<'d> Importer<'d> {
             .filter(|f| !STRUCTURE_FIELDS.contains(&f.name.as_str()))
             .filter_map(|f| {
                 let v = &f.value;
-                let value = if !v.numbers.is_empty() && f.name == "lookupTable" {
+                // An empty `lookupTable []` is kept: Webots reads through no table then (a
+                // DistanceSensor reads 0, a LightSensor its raw irradiance), not the default.
+                let table = f.name == "lookupTable" && v.strings.is_empty() && v.bools.is_empty();
+                let value = if table {
                     let rows = v.numbers.chunks_exact(3).map(|r| [r[0], r[1], r[2]]);
                     DeviceField::Table(rows.collect())
                 } else if v.numbers.len() == 1 {

@@ -271,16 +271,27 @@ impl<'d> Importer<'d> {
                 if under_floor(top) {
                     return self.drop_visual(node, geometry, UNDER_FLOOR);
                 }
-                if !on_floor(top) || tilt(frame.axis(2)) > TILT_TOLERANCE {
+                // Whichever of its axes stands up (a box turned a quarter turn about x, as a
+                // world of coordinateSystem "NUE" writes one, stands on its y axis); the other
+                // two span the mark.
+                let up = (0..3)
+                    .min_by(|&i, &j| tilt(frame.axis(i)).total_cmp(&tilt(frame.axis(j))))
+                    .unwrap_or(2);
+                if !on_floor(top) || tilt(frame.axis(up)) > TILT_TOLERANCE {
                     return self.sensed_or_dropped(node, geometry, &parent);
                 }
-                let width = half[0][0].hypot(half[0][1]) * 2.0;
-                let depth = half[1][0].hypot(half[1][1]) * 2.0;
+                let [along, across] = match up {
+                    0 => [half[1], half[2]],
+                    1 => [half[2], half[0]],
+                    _ => [half[0], half[1]],
+                };
+                let width = along[0].hypot(along[1]) * 2.0;
+                let depth = across[0].hypot(across[1]) * 2.0;
                 self.mark(
                     PaintSpec::Rect {
                         center: [Finite(snap(frame.origin[0])), Finite(snap(frame.origin[1]))],
                         size: [Positive(width), Positive(depth)],
-                        yaw: Finite(snap(half[0][1].atan2(half[0][0]))),
+                        yaw: Finite(snap(along[1].atan2(along[0]))),
                         reflectance: Reflectance(reflectance),
                         colour: colour.map(values::colour),
                     },

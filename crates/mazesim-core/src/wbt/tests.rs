@@ -673,6 +673,26 @@ fn webots_7_epuck_and_a_downward_sensor() {
 }
 
 #[test]
+fn an_empty_lookup_table_is_kept_apart_from_a_missing_one() {
+    // Webots reads through no table where the field is `[]` (a DistanceSensor reads 0, a
+    // LightSensor its raw irradiance), and through the node's default where it is left out.
+    let w = import(
+        "#VRML_SIM R2023b utf8\nE-puck { turretSlot [\n\
+           DistanceSensor { name \"empty\" lookupTable [] }\n\
+           DistanceSensor { name \"missing\" }\n\
+           LightSensor { name \"rows\" lookupTable [ 0 0 0, 2 10 0.1 ] } ] }\n",
+    );
+    let table = |name: &str| {
+        let device = w.extension_devices.iter().find(|d| d.name == name).unwrap();
+        let field = device.fields.iter().find(|(f, _)| f == "lookupTable");
+        field.map(|(_, value)| value.clone())
+    };
+    assert_eq!(table("empty"), Some(super::DeviceField::Table(vec![])));
+    assert_eq!(table("missing"), None);
+    let rows = vec![[0.0, 0.0, 0.0], [2.0, 10.0, 0.1]];
+    assert_eq!(table("rows"), Some(super::DeviceField::Table(rows)));
+}
+#[test]
 fn the_e_pucks_ground_slot_is_mounted_as_its_proto_mounts_it() {
     // Before R2022a the slot is turned so that a plain DistanceSensor in it points at the floor,
     // its y axis to the robot's right; since R2022a it is unrotated. Both sit 3 cm forward.
@@ -1327,6 +1347,38 @@ fn a_solid_whose_bounding_object_lies_on_the_floor_is_a_floor_mark_of_its_colour
         close(floor.reflectance_at([0.0, -0.3]), 1.0),
         "the buried cone"
     );
+}
+
+#[test]
+fn a_box_mark_standing_on_another_axis_than_its_z_is_painted() {
+    // A black square sunk to the floor's level in a world of coordinateSystem "NUE" (its y
+    // axis up, as a course's T-maze of R2022b writes it, scaled), and a long white strip in
+    // a Z-up world turned a quarter turn about its x axis: each stands on an axis other than
+    // its own z, and each is a mark of its own footprint, not a shape standing in the air.
+    let nue = import(
+        "#VRML_SIM R2022b utf8\nWorldInfo { coordinateSystem \"NUE\" }\n\
+         Solid { translation 0.01 -0.03425 0.193 scale 1.37173 1.37173 1.37173 children [ \
+           DEF B Shape { appearance PBRAppearance { baseColor 0 0 0 } \
+           geometry Box { size 0.08 0.05 0.08 } } ] boundingObject USE B }\n",
+    );
+    assert_eq!(nue.paint.len(), 1, "{:?}", nue.warnings);
+    let world = nue.to_world("nue").unwrap();
+    let floor = world.floor();
+    // Turned from NUE as the import turns every node: the square's centre is at x -0.193,
+    // y -0.01, 11 cm wide.
+    assert!(close(floor.reflectance_at([-0.193, -0.01]), 0.2));
+    assert!(close(floor.reflectance_at([-0.24, -0.055]), 0.2));
+    assert!(close(floor.reflectance_at([-0.26, -0.01]), 1.0));
+    let turned = import(
+        "#VRML_SIM R2023b utf8\n\
+         Pose { translation 0 0 0.0005 rotation 1 0 0 1.5708 children [ Shape { \
+           appearance PBRAppearance { baseColor 0 0 0 } geometry Box { size 0.4 0.001 0.02 } } ] }\n",
+    );
+    assert_eq!(turned.paint.len(), 1, "{:?}", turned.warnings);
+    let world = turned.to_world("turned").unwrap();
+    let floor = world.floor();
+    assert!(close(floor.reflectance_at([0.15, 0.005]), 0.2));
+    assert!(close(floor.reflectance_at([0.0, 0.02]), 1.0));
 }
 
 #[test]
