@@ -6,11 +6,14 @@ written."""
 
 from __future__ import annotations
 
+import os
 from pathlib import Path
 
 import pytest
+from matplotlib.text import Text
 
 import mazesim
+from mazesim._figures import save_figure
 from mazesim.cli import main
 from mazesim.plotting import save_trajectory_png
 
@@ -82,3 +85,54 @@ def test_a_figure_option_with_another_suffix_is_refused_before_the_command_runs(
     assert "expected a figure file ending in .png, .pdf or .svg" in error, error
     assert "Traceback" not in error
     assert list(tmp_path.iterdir()) == []
+
+
+def test_a_lone_surrogate_is_drawn_escaped_in_every_text_of_a_figure(tmp_path: Path) -> None:
+    """A file name's undecodable byte reaches a title as a lone surrogate (``\\xff`` decodes to
+    ``\\udcff``), which FreeType refused to lay out (a TypeError from matplotlib): every text of a
+    figure (title, axis label, legend, annotation) is drawn with it escaped."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from matplotlib.figure import Figure
+
+    figure = Figure()
+    axes = figure.add_subplot()
+    axes.plot([0, 1], [0, 1], label="run \udcff")
+    axes.set_title("world \udcff: controller \ud800")
+    axes.set_xlabel("x \udc80 (m)")
+    axes.legend()
+    axes.annotate("goal \udfff", (0.5, 0.5))
+    figure.suptitle("caf\u00e9 \udcfe")
+    save_figure(figure, tmp_path / "figure.png")
+    assert (tmp_path / "figure.png").read_bytes().startswith(b"\x89PNG")
+    texts = {text.get_text() for text in figure.findobj(Text)}
+    assert {
+        "world \\xff: controller \\ud800",
+        "x \\x80 (m)",
+        "run \\xff",
+        "goal \\udfff",
+        "caf\u00e9 \\xfe",
+    } <= texts, texts
+
+
+def test_a_trajectory_titled_after_an_undecodable_file_name_is_written(tmp_path: Path) -> None:
+    path = tmp_path / "trajectory.svg"
+    title = os.fsdecode(b"maze-\xff: avoid-collision")
+    save_trajectory_png(mazesim.World.builtin("arena"), [0.0, 0.1], [0.0, 0.1], path, title=title)
+    assert "maze-\\xff: avoid-collision" in path.read_text(encoding="utf-8")
+
+
+def test_webots_run_of_a_controller_whose_file_name_is_undecodable_draws_its_picture(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """The run's picture is titled after the controller's file name: one whose name holds a byte
+    that is no UTF-8 (``\\xff``) ended the run with matplotlib's TypeError (exit 2)."""
+    monkeypatch.chdir(tmp_path)
+    name = os.fsdecode(b"\xff")
+    Path(name).write_text(
+        "from controller import Robot\nrobot = Robot()\nwhile robot.step(32) != -1:\n    pass\n",
+        encoding="utf-8",
+    )
+    assert main(["webots", "run", name, "--no-noise", "--seconds", "1"]) == 0
+    assert (tmp_path / "mazesim-webots" / "trajectory.png").read_bytes().startswith(b"\x89PNG")

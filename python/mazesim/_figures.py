@@ -6,6 +6,12 @@ an emoji): matplotlib draws each as an empty box and warns once per character, a
 after its run. :func:`save_figure` draws them as boxes without the warning, and writes the file
 atomically (:func:`mazesim._atomic.atomic_file`).
 
+A text may also hold a lone surrogate, which FreeType cannot lay out (matplotlib raised a
+TypeError): a file name's undecodable byte, which Python decodes as one (``\\xff`` as ``\\udcff``),
+reaches a title through a world's or a controller's name. :func:`save_figure` shows each such
+character escaped, as ``\\xff`` for a byte a name could not decode and ``\\ud800`` for another,
+in every text of the figure (titles, labels, legends, annotations) before it is laid out.
+
 A figure is written in the format its file's suffix names: PNG, or PDF and SVG for a paper's
 vector figures (written without a creation date, and SVG with fixed ids, so the same figure gives
 the same bytes); a name without a suffix, or a device or FIFO, gets PNG. A name with another suffix
@@ -18,6 +24,7 @@ from __future__ import annotations
 import argparse
 import contextlib
 import os
+import re
 import stat
 import warnings
 from collections.abc import Iterator
@@ -32,6 +39,7 @@ if TYPE_CHECKING:
 
 __all__ = [
     "FIGURE_SUFFIXES",
+    "drawable_text",
     "figure_file",
     "figure_format",
     "figure_suffix_refusal",
@@ -43,6 +51,8 @@ __all__ = [
 #: font(s) DejaVu Sans.").
 _MISSING_GLYPH = r"Glyph \d+ .*missing from font"
 
+#: A lone surrogate (U+D800 to U+DFFF), which no font draws and FreeType refuses to lay out.
+_LONE_SURROGATE = re.compile("[\ud800-\udfff]")
 
 #: The suffixes a figure's file may have (any case), each the format :func:`save_figure` writes.
 #: A name without a suffix (``plot``) gets PNG, and so does something that is not a file
@@ -103,12 +113,34 @@ def missing_glyphs_as_boxes() -> Iterator[None]:
         yield
 
 
+def drawable_text(text: str) -> str:
+    """``text`` with each lone surrogate escaped: ``\\xff`` for one that stands for a byte a file
+    name could not decode (U+DC80 to U+DCFF, as :func:`os.fsdecode` makes them), else
+    ``\\ud800``."""
+    return _LONE_SURROGATE.sub(_escaped_surrogate, text)
+
+
+def _escaped_surrogate(found: re.Match[str]) -> str:
+    code = ord(found.group())
+    return f"\\x{code - 0xDC00:02x}" if 0xDC80 <= code <= 0xDCFF else f"\\u{code:04x}"
+
+
+def _make_texts_drawable(figure: Figure) -> None:
+    """Escapes the lone surrogates of every text of ``figure`` (:func:`drawable_text`)."""
+    from matplotlib.text import Text
+
+    for artist in figure.findobj(Text):
+        text = artist.get_text()
+        if isinstance(text, str) and _LONE_SURROGATE.search(text):
+            artist.set_text(drawable_text(text))
+
+
 def save_figure(
     figure: Figure, path: str | os.PathLike[str], *, tight: bool = True, dpi: float | None = None
 ) -> None:
     """Lays ``figure`` out (``tight_layout`` unless ``tight`` is False) and writes it to ``path``
     in the format of its suffix (:func:`figure_format`: PNG, PDF or SVG), atomically, at ``dpi``
-    (the figure's own when None).
+    (the figure's own when None). Its texts are drawn as :func:`drawable_text` shows them.
 
     Raises:
         InvalidArgumentError: ``path`` ends in a suffix other than those of
@@ -123,6 +155,7 @@ def save_figure(
     options: dict[str, Any] = {"format": kind, **({} if dpi is None else {"dpi": dpi})}
     if kind in _UNDATED:
         options["metadata"] = _UNDATED[kind]
+    _make_texts_drawable(figure)
     with missing_glyphs_as_boxes(), matplotlib.rc_context({"svg.hashsalt": "mazesim"}):
         if tight:
             figure.tight_layout()
