@@ -714,6 +714,47 @@ def test_robotis_lds01_is_the_lidar_it_holds_and_an_unknown_proto_among_children
     assert len(said) == 1 and "HokuyoUnheardOf" in said[0], report["warnings"]
 
 
+def test_hokuyo_scanner_protos_are_the_lidars_they_hold() -> None:
+    """Webots' Hokuyo PROTOs (given by URL, as worlds since R2022b name them) are the Lidars of
+    Webots' guide: the URG-04LX 667 ranges over 240 degrees, 0.06 to 4.096 m; its PROTO field
+    ``resolution`` is the Lidar's ``horizontalResolution``. A localiser's
+    ``getDevice('Hokuyo URG-04LX')`` found nothing and its ``enable`` stopped on None; now the
+    scan reads the arena's wall ahead."""
+    from mazesim.webots import import_wbt_text
+
+    url = "https://raw.githubusercontent.com/cyberbotics/webots/R2023b/projects/devices/hokuyo"
+    text = (
+        "#VRML_SIM R2023b utf8\n"
+        f'EXTERNPROTO "{url}/protos/HokuyoUrg04lx.proto"\n'
+        f'EXTERNPROTO "{url}/protos/HokuyoUrg04lxug01.proto"\n'
+        "E-puck {\n  turretSlot [\n    HokuyoUrg04lx { translation 0 0 0.02 }\n"
+        '    HokuyoUrg04lxug01 { name "rear" resolution 100 noise 0.01 }\n  ]\n}\n'
+    )
+    _, report = import_wbt_text(text)
+    lidars = {d["name"]: d for d in report["extension_devices"]}
+    assert set(lidars) == {"Hokuyo URG-04LX", "rear"}, report["warnings"]
+    urg, rear = lidars["Hokuyo URG-04LX"]["fields"], lidars["rear"]["fields"]
+    assert (urg["horizontalResolution"], urg["numberOfLayers"], urg["fieldOfView"]) == (
+        667,
+        1,
+        4.18879,
+    )
+    assert (urg["minRange"], urg["maxRange"]) == (0.06, 4.096)
+    assert (rear["horizontalResolution"], rear["noise"], rear["maxRange"]) == (100, 0.01, 5.6)
+    assert "resolution" not in rear
+    assert not any("Hokuyo" in w for w in report["warnings"]), report["warnings"]
+    robot = make_robot(report=report)
+    lidar = robot.getDevice("Hokuyo URG-04LX")
+    lidar.enable(32)
+    assert (lidar.getHorizontalResolution(), lidar.getMaxRange()) == (667, 4.096)
+    assert lidar.getFov() == pytest.approx(4.18879)
+    simulations.current().move_robot(0.0, 0.0, 0.0)
+    robot.step(32)
+    ahead = lidar.getRangeImage()[333]
+    # From the arena's centre to its wall at x = 0.495, less the turret's reach forward (0).
+    assert ahead == pytest.approx(0.495, abs=0.01), ahead
+
+
 def test_a_distance_sensor_the_world_adds_gives_its_aperture() -> None:
     """A DistanceSensor the world mounts (not one of the E-puck's own) answers getAperture, as a
     C controller's link asks of every distance sensor: the world's ``aperture``, else the

@@ -96,6 +96,38 @@ const BUILT_IN_NAMES: &[&str] = &[
 /// The LDS-01's field of view as Webots' RobotisLds01 PROTO writes it (not quite 2 pi).
 #[allow(clippy::approx_constant)]
 const LDS01_FIELD_OF_VIEW: f64 = 6.28318;
+/// The field of view of Hokuyo's URG-04LX scanners as Webots' PROTOs write it: 240 degrees.
+const HOKUYO_URG_FIELD_OF_VIEW: f64 = 4.18879;
+/// What Webots' Hokuyo PROTOs share: a Lidar at the PROTO's origin whose `noise` and number of
+/// ranges (the PROTO's `resolution`, the Lidar's `horizontalResolution`) a world may set.
+const HOKUYO: DeviceProto = DeviceProto {
+    proto: "",
+    kind: "Lidar",
+    default_name: "",
+    translation: [0.0; 3],
+    turn: 0.0,
+    kept: &["noise", "horizontalResolution"],
+    renamed: &[("resolution", "horizontalResolution")],
+    fixed: &[],
+};
+
+/// The Lidar fields of a Hokuyo PROTO of `model`: one layer of `ranges` over `field_of_view`
+/// (rad), from `range[0]` to `range[1]` metres.
+const fn hokuyo_lidar(
+    model: &'static str,
+    ranges: f64,
+    field_of_view: f64,
+    range: [f64; 2],
+) -> [(&'static str, ProtoValue); 6] {
+    [
+        ("horizontalResolution", ProtoValue::Number(ranges)),
+        ("fieldOfView", ProtoValue::Number(field_of_view)),
+        ("numberOfLayers", ProtoValue::Number(1.0)),
+        ("minRange", ProtoValue::Number(range[0])),
+        ("maxRange", ProtoValue::Number(range[1])),
+        ("model", ProtoValue::Text(model)),
+    ]
+}
 /// A device PROTO of Webots' own that holds one device node with fields of its own setting: a
 /// world may mount it in a slot, or among a robot's children, as the device it holds.
 struct DeviceProto {
@@ -111,6 +143,8 @@ struct DeviceProto {
     turn: f64,
     /// The held node's fields a world may set through the PROTO (the others are the PROTO's).
     kept: &'static [&'static str],
+    /// The PROTO's fields that set a held node's field of another name (PROTO's, node's).
+    renamed: &'static [(&'static str, &'static str)],
     /// The held node's fields as the PROTO sets them: a kept field the world sets wins.
     fixed: &'static [(&'static str, ProtoValue)],
 }
@@ -185,7 +219,11 @@ const EPUCK_DISTANCE_SENSOR_MODEL: &str = "e-puck distance sensor";
 ///   named after the sensor (`Sharp's IR sensor GP2D120`);
 /// - Robotis' `RobotisLds01` laser distance sensor: a `Lidar` named `LDS-01` of one layer of
 ///   360 ranges all round, 0.12 to 3.5 m (the Coursera and CU Boulder course worlds mount it
-///   among an e-puck's children).
+///   among an e-puck's children);
+/// - Hokuyo's laser scanners of `projects/devices/hokuyo` (`HokuyoUrg04lx`, `HokuyoUrg04lxug01`,
+///   `HokuyoUtm30lx`): a `Lidar` of one layer named after the scanner, of the field of view and
+///   range of Webots' guide (Lidar sensors), whose PROTO field `resolution` sets the Lidar's
+///   `horizontalResolution`.
 const DEVICE_PROTOS: &[DeviceProto] = &[
     DeviceProto {
         proto: "E-puckDistanceSensor",
@@ -194,6 +232,7 @@ const DEVICE_PROTOS: &[DeviceProto] = &[
         translation: [0.0, 0.005, 0.0],
         turn: 0.16,
         kept: &["numberOfRays"],
+        renamed: &[],
         fixed: &[
             ("type", ProtoValue::Text("infra-red")),
             ("aperture", ProtoValue::Number(0.1)),
@@ -207,6 +246,7 @@ const DEVICE_PROTOS: &[DeviceProto] = &[
         translation: [0.0; 3],
         turn: 0.0,
         kept: &["model"],
+        renamed: &[],
         fixed: &[
             ("model", ProtoValue::Text("GP2D120")),
             ("lookupTable", ProtoValue::Table(SHARP_4_30_CM)),
@@ -219,6 +259,7 @@ const DEVICE_PROTOS: &[DeviceProto] = &[
         translation: [0.0; 3],
         turn: 0.0,
         kept: &["model"],
+        renamed: &[],
         fixed: &[
             ("model", ProtoValue::Text("GP2Y0A41SK0F")),
             ("lookupTable", ProtoValue::Table(SHARP_4_30_CM)),
@@ -231,6 +272,7 @@ const DEVICE_PROTOS: &[DeviceProto] = &[
         translation: [0.0; 3],
         turn: 0.0,
         kept: &["model"],
+        renamed: &[],
         fixed: &[
             ("model", ProtoValue::Text("GP2Y0A02YK0F")),
             ("lookupTable", ProtoValue::Table(SHARP_20_150_CM)),
@@ -246,6 +288,7 @@ const DEVICE_PROTOS: &[DeviceProto] = &[
         translation: [0.0, 0.0, 0.02],
         turn: 0.0,
         kept: &["noise"],
+        renamed: &[],
         fixed: &[
             ("horizontalResolution", ProtoValue::Number(360.0)),
             ("fieldOfView", ProtoValue::Number(LDS01_FIELD_OF_VIEW)),
@@ -255,6 +298,37 @@ const DEVICE_PROTOS: &[DeviceProto] = &[
             ("maxRange", ProtoValue::Number(3.5)),
             ("noise", ProtoValue::Number(0.0043)),
         ],
+    },
+    // Hokuyo's scanners as Webots' PROTOs set their Lidar (projects/devices/hokuyo/protos;
+    // Webots' guide, Lidar sensors): one layer at the PROTO's origin; the PROTO's `resolution`
+    // is the Lidar's `horizontalResolution` (its ranges), its `noise` the Lidar's.
+    DeviceProto {
+        proto: "HokuyoUrg04lx",
+        default_name: "Hokuyo URG-04LX",
+        fixed: &hokuyo_lidar(
+            "Hokuyo URG-04LX",
+            667.0,
+            HOKUYO_URG_FIELD_OF_VIEW,
+            [0.06, 4.096],
+        ),
+        ..HOKUYO
+    },
+    DeviceProto {
+        proto: "HokuyoUrg04lxug01",
+        default_name: "Hokuyo URG-04LX-UG01",
+        fixed: &hokuyo_lidar(
+            "Hokuyo URG-04LX-UG01",
+            667.0,
+            HOKUYO_URG_FIELD_OF_VIEW,
+            [0.2, 5.6],
+        ),
+        ..HOKUYO
+    },
+    DeviceProto {
+        proto: "HokuyoUtm30lx",
+        default_name: "Hokuyo UTM-30LX",
+        fixed: &hokuyo_lidar("Hokuyo UTM-30LX", 1080.0, 4.71238, [0.1, 30.0]),
+        ..HOKUYO
     },
 ];
 /// Device types whose node an e-puck saved expanded keeps with its own fields (a radio's
@@ -581,6 +655,11 @@ impl<'d> Importer<'d> {
         self.device(node, slot, &frame, proto.default_name);
         if let Some(device) = self.devices.last_mut() {
             device.kind = proto.kind.into();
+            for (name, _) in &mut device.fields {
+                if let Some(&(_, held)) = proto.renamed.iter().find(|(own, _)| own == name) {
+                    *name = held.to_string();
+                }
+            }
             device
                 .fields
                 .retain(|(name, _)| proto.kept.contains(&name.as_str()));
