@@ -136,3 +136,33 @@ def test_webots_run_of_a_controller_whose_file_name_is_undecodable_draws_its_pic
     )
     assert main(["webots", "run", name, "--no-noise", "--seconds", "1"]) == 0
     assert (tmp_path / "mazesim-webots" / "trajectory.png").read_bytes().startswith(b"\x89PNG")
+
+
+def test_a_legend_beside_a_world_drawn_to_scale_is_written_whole(tmp_path: Path) -> None:
+    """``tight_layout`` makes no room for a legend beside axes that keep their aspect (a world
+    drawn to scale): the default world's trajectory picture was cut through its legend and its
+    y label. A figure whose drawing reaches past its edges is written grown to hold it; one that
+    fits keeps its size."""
+    from matplotlib.figure import Figure
+    from PIL import Image
+
+    def picture(label: str, name: str) -> tuple[tuple[int, int], Figure]:
+        figure = Figure(figsize=(4.0, 3.0), dpi=100)
+        axes = figure.add_subplot()
+        axes.plot([0, 1], [0, 1], label=label)
+        axes.set_aspect("equal")
+        axes.set_ylabel("y (m)")
+        axes.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0))
+        save_figure(figure, tmp_path / name)
+        with Image.open(tmp_path / name) as image:
+            return image.size, figure
+
+    (width, height), figure = picture("floor paint (grey = reflectance), checkpoints", "w.png")
+    drawn = figure.get_tightbbox()
+    assert width >= drawn.width * 100 and height >= drawn.height * 100, (width, drawn)
+    assert width > 400
+    assert picture("a", "fits.png")[0] == (400, 300)
+    seed = tmp_path / "seed.png"
+    save_trajectory_png(mazesim.World.builtin("seed-maze"), [0.0, 0.1], [0.0, 0.1], seed)
+    with Image.open(seed) as image:
+        assert image.size[0] > 8 * 120, image.size

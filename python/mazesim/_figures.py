@@ -135,12 +135,28 @@ def _make_texts_drawable(figure: Figure) -> None:
             artist.set_text(drawable_text(text))
 
 
+def _overflows(figure: Figure) -> bool:
+    """Whether some text or legend of ``figure`` reaches past its edges, where it would be cut
+    off: a legend beside the axes of a world drawn to scale, which ``tight_layout`` does not
+    make room for when the axes keep their aspect."""
+    box = figure.get_tightbbox()
+    if box is None:
+        return False
+    width, height = figure.get_size_inches()
+    slack = 0.01  # inches: less than a pixel at the figures' resolutions
+    return bool(
+        box.x0 < -slack or box.y0 < -slack or box.x1 > width + slack or box.y1 > height + slack
+    )
+
+
 def save_figure(
     figure: Figure, path: str | os.PathLike[str], *, tight: bool = True, dpi: float | None = None
 ) -> None:
     """Lays ``figure`` out (``tight_layout`` unless ``tight`` is False) and writes it to ``path``
     in the format of its suffix (:func:`figure_format`: PNG, PDF or SVG), atomically, at ``dpi``
-    (the figure's own when None). Its texts are drawn as :func:`drawable_text` shows them.
+    (the figure's own when None). Its texts are drawn as :func:`drawable_text` shows them. A
+    figure whose texts or legend reach past its edges is written grown to hold them (cut to its
+    drawing's bounds, 0.1 inch around); one that fits is written at its own size.
 
     Raises:
         InvalidArgumentError: ``path`` ends in a suffix other than those of
@@ -159,5 +175,7 @@ def save_figure(
     with missing_glyphs_as_boxes(), matplotlib.rc_context({"svg.hashsalt": "mazesim"}):
         if tight:
             figure.tight_layout()
+        if _overflows(figure):
+            options.update(bbox_inches="tight", pad_inches=0.1)
         with atomic_file(path) as handle:
             figure.savefig(handle, **options)
