@@ -141,8 +141,8 @@ def test_webots_run_of_a_controller_whose_file_name_is_undecodable_draws_its_pic
 def test_a_legend_beside_a_world_drawn_to_scale_is_written_whole(tmp_path: Path) -> None:
     """``tight_layout`` makes no room for a legend beside axes that keep their aspect (a world
     drawn to scale): the default world's trajectory picture was cut through its legend and its
-    y label. A figure whose drawing reaches past its edges is written grown to hold it; one that
-    fits keeps its size."""
+    y label. The subplots are moved in to make room, at the figure's own size; a figure that
+    fits is written as it was."""
     from matplotlib.figure import Figure
     from PIL import Image
 
@@ -152,17 +152,21 @@ def test_a_legend_beside_a_world_drawn_to_scale_is_written_whole(tmp_path: Path)
         axes.plot([0, 1], [0, 1], label=label)
         axes.set_aspect("equal")
         axes.set_ylabel("y (m)")
-        axes.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0))
+        axes.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize=7)
         save_figure(figure, tmp_path / name)
         with Image.open(tmp_path / name) as image:
             return image.size, figure
 
-    (width, height), figure = picture("floor paint (grey = reflectance), checkpoints", "w.png")
+    size, figure = picture("floor paint (grey = reflectance)", "wide.png")
     drawn = figure.get_tightbbox()
-    assert width >= drawn.width * 100 and height >= drawn.height * 100, (width, drawn)
-    assert width > 400
-    assert picture("a", "fits.png")[0] == (400, 300)
-    seed = tmp_path / "seed.png"
-    save_trajectory_png(mazesim.World.builtin("seed-maze"), [0.0, 0.1], [0.0, 0.1], seed)
-    with Image.open(seed) as image:
-        assert image.size[0] > 8 * 120, image.size
+    assert size == (400, 300)
+    assert drawn.x0 >= 0.0 and drawn.y0 >= 0.0 and drawn.x1 <= 4.0 and drawn.y1 <= 3.0, drawn
+    size, figure = picture("a", "fits.png")
+    assert size == (400, 300) and figure.subplotpars.right > 0.7
+    world = mazesim.World.builtin("seed-maze")
+    for name in ("seed.png", "seed.svg"):
+        save_trajectory_png(world, [0.0, 0.1], [0.0, 0.1], tmp_path / name)
+    text = (tmp_path / "seed.svg").read_text(encoding="utf-8")
+    width = float(text.split('width="', 1)[1].split("pt", 1)[0])
+    with Image.open(tmp_path / "seed.png") as image:
+        assert image.size[0] == 8 * 120 and width == 8 * 72, (image.size, width)

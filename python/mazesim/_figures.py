@@ -135,18 +135,51 @@ def _make_texts_drawable(figure: Figure) -> None:
             artist.set_text(drawable_text(text))
 
 
-def _overflows(figure: Figure) -> bool:
-    """Whether some text or legend of ``figure`` reaches past its edges, where it would be cut
-    off: a legend beside the axes of a world drawn to scale, which ``tight_layout`` does not
-    make room for when the axes keep their aspect."""
+#: Inches left between a figure's edge and a drawing moved in from past it.
+_EDGE_PAD = 0.05
+#: Inches a drawing may reach past an edge unmoved: less than a pixel at the figures' dpi.
+_SLACK = 0.01
+
+
+def _overhang(figure: Figure) -> tuple[float, float, float, float]:
+    """How far (inches) the drawing of ``figure`` reaches past its left, bottom, right and top
+    edges (0 where it stays inside)."""
     box = figure.get_tightbbox()
     if box is None:
-        return False
+        return (0.0, 0.0, 0.0, 0.0)
     width, height = figure.get_size_inches()
-    slack = 0.01  # inches: less than a pixel at the figures' resolutions
-    return bool(
-        box.x0 < -slack or box.y0 < -slack or box.x1 > width + slack or box.y1 > height + slack
+    return (
+        max(0.0, -box.x0),
+        max(0.0, -box.y0),
+        max(0.0, box.x1 - width),
+        max(0.0, box.y1 - height),
     )
+
+
+def _make_room(figure: Figure) -> bool:
+    """Moves the subplots in from the edges that some text or legend reaches past (a legend
+    beside a world drawn to scale, for which ``tight_layout`` makes no room when the axes keep
+    their aspect), keeping the figure's size; True when the drawing then fits (at once for a
+    figure that already fits, which is left as it is)."""
+    for _ in range(8):
+        left, bottom, right, top = _overhang(figure)
+        if max(left, bottom, right, top) <= _SLACK:
+            return True
+        engine = figure.get_layout_engine()
+        if engine is not None and not engine.adjust_compatible:
+            return False
+        width, height = figure.get_size_inches()
+        params = figure.subplotpars
+        moved = [
+            params.left + (left + _EDGE_PAD) / width if left > _SLACK else params.left,
+            params.bottom + (bottom + _EDGE_PAD) / height if bottom > _SLACK else params.bottom,
+            params.right - (right + _EDGE_PAD) / width if right > _SLACK else params.right,
+            params.top - (top + _EDGE_PAD) / height if top > _SLACK else params.top,
+        ]
+        if moved[0] >= moved[2] or moved[1] >= moved[3]:
+            return False
+        figure.subplots_adjust(left=moved[0], bottom=moved[1], right=moved[2], top=moved[3])
+    return max(_overhang(figure)) <= _SLACK
 
 
 def save_figure(
@@ -155,8 +188,9 @@ def save_figure(
     """Lays ``figure`` out (``tight_layout`` unless ``tight`` is False) and writes it to ``path``
     in the format of its suffix (:func:`figure_format`: PNG, PDF or SVG), atomically, at ``dpi``
     (the figure's own when None). Its texts are drawn as :func:`drawable_text` shows them. A
-    figure whose texts or legend reach past its edges is written grown to hold them (cut to its
-    drawing's bounds, 0.1 inch around); one that fits is written at its own size.
+    figure whose texts or legend reach past its edges has its subplots moved in from those edges
+    to make room, at its own size (grown to hold its drawing only where that cannot be done); a
+    figure that fits is written as it is.
 
     Raises:
         InvalidArgumentError: ``path`` ends in a suffix other than those of
@@ -175,7 +209,7 @@ def save_figure(
     with missing_glyphs_as_boxes(), matplotlib.rc_context({"svg.hashsalt": "mazesim"}):
         if tight:
             figure.tight_layout()
-        if _overflows(figure):
+        if not _make_room(figure):
             options.update(bbox_inches="tight", pad_inches=0.1)
         with atomic_file(path) as handle:
             figure.savefig(handle, **options)
