@@ -185,6 +185,32 @@ def test_an_empty_lookup_table_reads_0_as_webots_reads_through_no_table(
     assert robot.getDevice("ps1").getLookupTable() == [v for row in PROXIMITY_TABLE for v in row]
 
 
+def test_an_empty_lookup_table_of_a_ground_sensor_reads_0() -> None:
+    """The ground sensors of an expanded e-puck go through the same tables as its proximity
+    sensors: gs1 with ``lookupTable []`` reads 0 over the arena's floor, gs0 and gs2 without one
+    read through the node's default."""
+    ground = "".join(
+        f'    DistanceSensor {{ translation 0.03 {y} -0.011 rotation 0 1 0 1.5708 name "{name}"'
+        f"{table} }}\n"
+        for name, y, table in (
+            ("gs0", 0.01, ""),
+            ("gs1", 0.0, " lookupTable [ ]"),
+            ("gs2", -0.01, ""),
+        )
+    )
+    text = plain_robot_world(PROXIMITY_TABLE).replace(
+        "  children [\n", "  children [\n" + ground, 1
+    )
+    _, robot = front_readings(text)
+    sensors = [robot.getDevice(name) for name in ("gs0", "gs1", "gs2")]
+    for sensor in sensors:
+        sensor.enable(32)
+    robot.step(32)
+    assert sensors[1].getLookupTable() == [] and sensors[1].getValue() == 0.0
+    assert sensors[0].getLookupTable() == [v for row in DEFAULT_LOOKUP_TABLE for v in row]
+    assert sensors[0].getValue() > 0.0 and sensors[2].getValue() > 0.0
+
+
 def test_a_lookup_table_not_of_rows_of_three_warns_naming_the_sensor(
     capsys: pytest.CaptureFixture[str],
 ) -> None:
