@@ -10,7 +10,6 @@ import os
 from pathlib import Path
 
 import pytest
-from matplotlib.text import Text
 
 import mazesim
 from mazesim._figures import save_figure
@@ -90,30 +89,39 @@ def test_a_figure_option_with_another_suffix_is_refused_before_the_command_runs(
 def test_a_lone_surrogate_is_drawn_escaped_in_every_text_of_a_figure(tmp_path: Path) -> None:
     """A file name's undecodable byte reaches a title as a lone surrogate (``\\xff`` decodes to
     ``\\udcff``), which FreeType refused to lay out (a TypeError from matplotlib): every text of a
-    figure (title, axis label, legend, annotation) is drawn with it escaped."""
+    figure (title, axis label, legend, annotation, and the tick labels matplotlib formats only
+    while it draws, categories among them) is drawn with it escaped; the figure's own texts are
+    left as they were."""
     import matplotlib
 
     matplotlib.use("Agg")
     from matplotlib.figure import Figure
 
     figure = Figure()
-    axes = figure.add_subplot()
+    axes, bars = figure.subplots(1, 2)
     axes.plot([0, 1], [0, 1], label="run \udcff")
     axes.set_title("world \udcff: controller \ud800")
     axes.set_xlabel("x \udc80 (m)")
+    axes.set_xticks([0, 1], ["tick \udcfd", "1"])
     axes.legend()
     axes.annotate("goal \udfff", (0.5, 0.5))
+    bars.bar(["group \udcfc", "b"], [1.0, 2.0])
     figure.suptitle("caf\u00e9 \udcfe")
-    save_figure(figure, tmp_path / "figure.png")
+    for name in ("figure.png", "figure.svg"):
+        save_figure(figure, tmp_path / name)
     assert (tmp_path / "figure.png").read_bytes().startswith(b"\x89PNG")
-    texts = {text.get_text() for text in figure.findobj(Text)}
-    assert {
+    drawn = (tmp_path / "figure.svg").read_text(encoding="utf-8")
+    for text in (
         "world \\xff: controller \\ud800",
         "x \\x80 (m)",
         "run \\xff",
         "goal \\udfff",
         "caf\u00e9 \\xfe",
-    } <= texts, texts
+        "tick \\xfd",
+        "group \\xfc",
+    ):
+        assert text in drawn, text
+    assert axes.get_title() == "world \udcff: controller \ud800"
 
 
 def test_a_trajectory_titled_after_an_undecodable_file_name_is_written(tmp_path: Path) -> None:

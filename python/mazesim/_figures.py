@@ -8,9 +8,11 @@ atomically (:func:`mazesim._atomic.atomic_file`).
 
 A text may also hold a lone surrogate, which FreeType cannot lay out (matplotlib raised a
 TypeError): a file name's undecodable byte, which Python decodes as one (``\\xff`` as ``\\udcff``),
-reaches a title through a world's or a controller's name. :func:`save_figure` shows each such
-character escaped, as ``\\xff`` for a byte a name could not decode and ``\\ud800`` for another,
-in every text of the figure (titles, labels, legends, annotations) before it is laid out.
+reaches a title through a world's or a controller's name, a tick label through a sweep's group.
+While :func:`save_figure` lays a figure out and writes it, every text matplotlib draws (titles,
+labels, legends, annotations, and the tick labels it formats only then) is read with each such
+character escaped, as ``\\xff`` for a byte a name could not decode and ``\\ud800`` for another;
+the figure's own texts are left as they were, and so are figures drawn elsewhere.
 
 A figure is written in the format its file's suffix names: PNG, or PDF and SVG for a paper's
 vector figures (written without a creation date, and SVG with fixed ids, so the same figure gives
@@ -26,6 +28,7 @@ import contextlib
 import os
 import re
 import stat
+import threading
 import warnings
 from collections.abc import Iterator
 from typing import TYPE_CHECKING, Any
@@ -125,14 +128,41 @@ def _escaped_surrogate(found: re.Match[str]) -> str:
     return f"\\x{code - 0xDC00:02x}" if 0xDC80 <= code <= 0xDCFF else f"\\u{code:04x}"
 
 
-def _make_texts_drawable(figure: Figure) -> None:
-    """Escapes the lone surrogates of every text of ``figure`` (:func:`drawable_text`)."""
+#: Whether this thread is inside :func:`_texts_drawable` (a figure being laid out and saved).
+_DRAWING = threading.local()
+
+
+def _install_drawable_texts() -> None:
+    """Makes matplotlib's ``Text.get_text`` give :func:`drawable_text` of the text while this
+    thread saves a figure (:data:`_DRAWING`), its own text otherwise; once per process. Every
+    text matplotlib lays out and draws is read through ``get_text``, tick labels included, which
+    are formatted only while the figure is drawn."""
     from matplotlib.text import Text
 
-    for artist in figure.findobj(Text):
-        text = artist.get_text()
-        if isinstance(text, str) and _LONE_SURROGATE.search(text):
-            artist.set_text(drawable_text(text))
+    original = Text.get_text
+    if getattr(original, "_drawable", False):
+        return
+
+    def get_text(self: Text) -> str:
+        text = original(self)
+        if getattr(_DRAWING, "active", False) and isinstance(text, str):
+            return drawable_text(text)
+        return text
+
+    get_text._drawable = True  # type: ignore[attr-defined]
+    Text.get_text = get_text  # type: ignore[method-assign]
+
+
+@contextlib.contextmanager
+def _texts_drawable() -> Iterator[None]:
+    """Within it, this thread's figures draw their texts as :func:`drawable_text` shows them."""
+    _install_drawable_texts()
+    before = getattr(_DRAWING, "active", False)
+    _DRAWING.active = True
+    try:
+        yield
+    finally:
+        _DRAWING.active = before
 
 
 #: Inches left between a figure's edge and a drawing moved in from past it.
@@ -205,8 +235,11 @@ def save_figure(
     options: dict[str, Any] = {"format": kind, **({} if dpi is None else {"dpi": dpi})}
     if kind in _UNDATED:
         options["metadata"] = _UNDATED[kind]
-    _make_texts_drawable(figure)
-    with missing_glyphs_as_boxes(), matplotlib.rc_context({"svg.hashsalt": "mazesim"}):
+    with (
+        missing_glyphs_as_boxes(),
+        _texts_drawable(),
+        matplotlib.rc_context({"svg.hashsalt": "mazesim"}),
+    ):
         if tight:
             figure.tight_layout()
         if not _make_room(figure):
