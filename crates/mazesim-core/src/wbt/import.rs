@@ -1098,6 +1098,7 @@ impl<'d> Importer<'d> {
         for &shape in self.nodes(node, "boundingObject") {
             self.bounding(shape, &frame, label, 1);
         }
+        self.robot_part_shapes(node, &frame);
         let footprint = ROBOT_FOOTPRINTS
             .iter()
             .find(|(name, _)| *name == node.type_name);
@@ -1118,6 +1119,53 @@ impl<'d> Importer<'d> {
         let looks = self.obstacle_looks.split_off(first);
         self.obstacle_tops.truncate(first);
         (shapes.into_iter().zip(looks).collect(), owners)
+    }
+
+    /// The collision shapes of a robot's parts: every Solid among its children (a device, a
+    /// wheel at a joint's `endPoint`, a Solid in a `Pose`) with a `boundingObject`, which Webots
+    /// collides with as it does with the robot's own. A robot inside the robot is left out.
+    fn robot_part_shapes(&mut self, robot: &'d Node, frame: &Frame) {
+        let mut stack: Vec<(&'d Node, Frame, usize)> = self
+            .nodes(robot, "children")
+            .iter()
+            .rev()
+            .map(|&id| (self.node(id), *frame, 1))
+            .collect();
+        while let Some((node, frame, depth)) = stack.pop() {
+            let kind = node.type_name.as_str();
+            if !self.enter(depth) || kind == "Shape" || VISUAL_NODES.contains(&kind) {
+                continue;
+            }
+            if EPUCK_PROTOS.contains(&kind)
+                || ROBOT_NODES.contains(&kind)
+                || self.is_robot_proto(node)
+            {
+                continue;
+            }
+            let (frame, held) = if JOINTS.contains(&kind) || kind == "Slot" {
+                (frame, "endPoint")
+            } else if kind == "Group" {
+                (frame, "children")
+            } else {
+                let local = self.local_frame(node, [0.0; 3]);
+                (frame.then(&local), "children")
+            };
+            let shapes = self.nodes(node, "boundingObject");
+            if !shapes.is_empty() {
+                let label = self.label(node);
+                let look = self.solid_look(node);
+                let outer = std::mem::replace(&mut self.look, look);
+                self.holders.push(node.line);
+                for &shape in shapes {
+                    self.bounding(shape, &frame, &label, depth + 1);
+                }
+                self.holders.pop();
+                self.look = outer;
+            }
+            for &child in self.nodes(node, held).iter().rev() {
+                stack.push((self.node(child), frame, depth + 1));
+            }
+        }
     }
 
     /// A robot's start pose (its origin and where its forward axis points), and whether its
@@ -1212,6 +1260,7 @@ fn not_an_epuck(label: &str, kind: &str, what: NotAnEpuck) -> String {
     let kept = match shaped {
         None => "",
         Some(true) => "; its collision shapes are static obstacles",
+        Some(false) if ROBOT_NODES.contains(&kind) => "; neither it nor a Solid among its children has a boundingObject, so it is no obstacle (nothing collides with it in Webots either)",
         Some(false) => "; it has no collision shape mazesim reads (a PROTO's are inside the PROTO), so it is no obstacle",
     };
     format!("{label}: a robot that is not an e-puck ({kind}): {runs}{kept}")

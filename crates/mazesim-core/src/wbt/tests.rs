@@ -213,7 +213,7 @@ fn a_robot_built_by_hand_with_the_e_puck_s_wheel_motors_is_simulated_in_every_ru
         assert_eq!(w.robots[0].profile, Some("e-puck"));
         assert_eq!(w.robots[1].profile, None);
         assert!(!warned(w, "in its place"), "{:?}", w.warnings);
-        assert!(warned(w, "line 9: Robot \"Driver\": a robot that is not an e-puck (Robot): its controller runs, its body does not move; it has no collision shape"), "{:?}", w.warnings);
+        assert!(warned(w, "line 9: Robot \"Driver\": a robot that is not an e-puck (Robot): its controller runs, its body does not move; neither it nor a Solid among its children has a boundingObject, so it is no obstacle"), "{:?}", w.warnings);
     }
     // One wheel motor of that name is not enough (beside a linear motor: no second wheel).
     let one = text.replacen(
@@ -278,7 +278,7 @@ fn issue_33_a_robot_imported_while_the_world_runs_is_warned_of_as_the_run_makes_
         };
         let w = WbtImport::from_text_for(RUNNING_WITH_A_ROVER, "running.wbt", choice).unwrap();
         assert!(warned(&w, "line 4: Robot \"rover\": a robot that is not an e-puck (Robot): imported while the world runs: its controller does not start, its body does not move; its collision shapes are static obstacles"), "{:?}", w.warnings);
-        assert!(warned(&w, "line 6: Robot \"probe\": a robot that is not an e-puck (Robot): imported while the world runs: its controller does not start, its body does not move; it has no collision shape"), "{:?}", w.warnings);
+        assert!(warned(&w, "line 6: Robot \"probe\": a robot that is not an e-puck (Robot): imported while the world runs: its controller does not start, its body does not move; neither it nor a Solid among its children has a boundingObject"), "{:?}", w.warnings);
         assert!(
             !warned(
                 &w,
@@ -1212,6 +1212,40 @@ fn a_library_robot_without_readable_shapes_stands_as_its_footprint() {
         "{:?}",
         w.warnings
     );
+}
+
+#[test]
+fn the_solids_a_robot_holds_are_obstacles_as_its_own_shape_is() {
+    // A four-wheeled robot of a course: its board on the Robot, its wheels at joints' endPoint
+    // (turned a quarter about x, as wheels are), a bumper DistanceSensor with a box, and a
+    // Solid in a Pose. Webots collides with each; a supervisor without a body is no obstacle.
+    let w = import(
+        "#VRML_SIM R2023b utf8\nE-puck { translation 0 0 0 }\n\
+         Robot { translation 1 0 0.05 rotation 0 0 1 1.5708 controller \"mobil\" children [\n\
+           HingeJoint { endPoint Solid { translation 0.1 0.06 0 rotation 1 0 0 1.5708\n\
+             boundingObject Cylinder { radius 0.04 height 0.02 } } }\n\
+           DistanceSensor { translation 0.2 0 0 boundingObject Box { size 0.01 0.01 0.01 } }\n\
+           Pose { translation -0.2 0 0 children [ Solid { boundingObject Sphere { radius 0.03 } } ] }\n\
+         ] boundingObject Box { size 0.1 0.2 0.05 } }\n\
+         Robot { translation -1 0 0 supervisor TRUE controller \"sup\" }\n",
+    );
+    let near = |x: f64, y: f64| {
+        w.obstacles.iter().any(|o| {
+            let c = match o {
+                Obstacle::Circle { center, .. } => *center,
+                Obstacle::Box { center, .. } => *center,
+            };
+            (c[0] - x).abs() < 1e-3 && (c[1] - y).abs() < 1e-3
+        })
+    };
+    // The robot is turned a quarter: its +x is the world's +y, its +y the world's -x.
+    assert_eq!(w.obstacles.len(), 4, "{:?}", w.obstacles);
+    assert!(near(1.0, 0.0), "its board: {:?}", w.obstacles);
+    assert!(near(0.94, 0.1), "its wheel: {:?}", w.obstacles);
+    assert!(near(1.0, 0.2), "its sensor's box: {:?}", w.obstacles);
+    assert!(near(1.0, -0.2), "the Solid in its Pose: {:?}", w.obstacles);
+    assert!(warned(&w, "line 3: Robot: a robot that is not an e-puck (Robot): its controller runs, its body does not move; its collision shapes are static obstacles"), "{:?}", w.warnings);
+    assert!(warned(&w, "(Robot): its controller runs, its body does not move; neither it nor a Solid among its children has a boundingObject, so it is no obstacle"), "{:?}", w.warnings);
 }
 
 #[test]
