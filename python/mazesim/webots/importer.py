@@ -516,7 +516,7 @@ def import_wbt_text(
     from mazesim.webots.proto import expand_world, world_resolver
 
     expanded, protos = expand_world(text, source)
-    remember(text, expanded)
+    remember(text, expanded, protos.interfaces)
 
     def imported(images: Any = None, colours: Any = None) -> tuple[World, dict[str, Any]]:
         return _core.import_wbt_text(

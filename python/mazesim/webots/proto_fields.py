@@ -19,11 +19,15 @@ reference manual (Light, PointLight, SpotLight, DirectionalLight, WorldInfo).
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 from mazesim._core import EPUCK_DEFAULT_CONTROLLER
+from mazesim.errors import MazesimError
 from mazesim.webots.camera import DEFAULT_FOV, DEFAULT_HEIGHT, DEFAULT_WIDTH
+from mazesim.webots.expansions import interface_of
+from mazesim.webots.proto.definition import FieldDeclaration
+from mazesim.webots.proto.values import field_value
 from mazesim.webots.radio_devices import E_PUCK_CHANNEL
 from mazesim.webots.scene import BASE_NAMES
 
@@ -297,8 +301,63 @@ _DECLARED = {
 
 
 def declared_fields(type_name: str) -> DeclaredFields:
-    """The declared fields of a PROTO mazesim builds in (none for another type)."""
-    return _DECLARED.get(type_name, DeclaredFields())
+    """The declared fields of a PROTO mazesim builds in, else those of a PROTO the world
+    imported last read from its file (a project's own, :func:`interface_of`), else none."""
+    if type_name in _DECLARED:
+        return _DECLARED[type_name]
+    interface = interface_of(type_name)
+    return DeclaredFields() if interface is None else _read_interface(interface)
+
+
+#: The vector types of a PROTO's interface, read as numbers.
+_VECTORS = ("SFVec2f", "SFVec3f", "SFColor", "SFRotation")
+
+
+#: The interfaces read, by identity (a supervisor asks for a node's fields at each getField):
+#: each with the interface it was read from, which keeps its identity its own.
+_READ: dict[int, tuple[Mapping[str, FieldDeclaration], DeclaredFields]] = {}
+
+
+def _read_interface(interface: Mapping[str, FieldDeclaration]) -> DeclaredFields:
+    """A PROTO file's declared single-value fields at their defaults (its ``translation`` and
+    ``rotation`` aside: an instance's pose is the scene's; a default that cannot be read, and
+    an ``MF`` field, aside too), read once."""
+    kept = _READ.get(id(interface))
+    if kept is not None and kept[0] is interface:
+        return kept[1]
+    if len(_READ) >= 256:
+        _READ.clear()
+    read = _parse_interface(interface)
+    _READ[id(interface)] = (interface, read)
+    return read
+
+
+def _parse_interface(interface: Mapping[str, FieldDeclaration]) -> DeclaredFields:
+    """What :func:`_read_interface` gives, read anew."""
+    read = DeclaredFields()
+    floats: set[str] = set()
+    nodes: set[str] = set()
+    for name, declared in interface.items():
+        if name in ("translation", "rotation"):
+            continue
+        if declared.kind == "SFNode":
+            nodes.add(name)
+            continue
+        try:
+            value = field_value(declared.kind, declared.default)
+        except (MazesimError, ValueError):
+            continue
+        if declared.kind == "SFString":
+            read.strings[name] = str(value)
+        elif declared.kind == "SFBool":
+            read.flags[name] = bool(value)
+        elif declared.kind in ("SFFloat", "SFInt32"):
+            read.numbers[name] = [float(value)]
+            if declared.kind == "SFFloat":
+                floats.add(name)
+        elif declared.kind in _VECTORS and isinstance(value, dict):
+            read.numbers[name] = [float(v) for v in value.values()]
+    return replace(read, floats=frozenset(floats), nodes=frozenset(nodes))
 
 
 #: The models the import gives an instance of Webots' E-puck PROTO (``version "2"``: e-puck2).

@@ -14,7 +14,7 @@ from typing import Any
 
 from mazesim.errors import WorldFormatError
 
-from .definition import ProtoDefinition, externproto_urls, parse_definition
+from .definition import FieldDeclaration, ProtoDefinition, externproto_urls, parse_definition
 from .own_robot import OWN_ROBOT_TYPES, added_devices, outermost, with_devices
 from .resolver import ProtoSource, ProtoUnavailableError, Resolver
 from .stand_ins import STAND_INS
@@ -86,6 +86,9 @@ class ExpansionReport:
     #: URLs read from the download cache, and URLs downloaded.
     cache_hits: list[str] = field(default_factory=list)
     downloads: list[str] = field(default_factory=list)
+    #: The interface of each PROTO read from a file, by its name: the fields (with their
+    #: defaults) a supervisor finds on an instance that leaves them out.
+    interfaces: dict[str, dict[str, FieldDeclaration]] = field(default_factory=dict)
 
 
 @dataclass(frozen=True)
@@ -261,6 +264,7 @@ class Expander:
             definition = parse_definition(source.text, source.origin)
             definition.externprotos = externproto_urls(source.text)
             self.report.expanded.setdefault(name, source.origin)
+            self.report.interfaces.setdefault(name, definition.fields)
         elif name in STAND_INS:
             stand_in = STAND_INS[name]
             definition = parse_definition(stand_in.text, f"mazesim's stand-in for {name}")
