@@ -11,7 +11,8 @@ import argparse
 import textwrap
 from typing import Any, NoReturn
 
-from mazesim.errors import MOST_MESSAGE, _closest_name, _shortened, _shown
+from mazesim._arguments import BoundedParser
+from mazesim.errors import _closest_name, _shown
 
 __all__ = ["CommandParser", "HelpFormatter", "examples"]
 
@@ -34,16 +35,15 @@ class HelpFormatter(argparse.HelpFormatter):
         return "\n\n".join(paragraphs)
 
 
-class CommandParser(argparse.ArgumentParser):
+class CommandParser(BoundedParser):
     """An argument parser whose help is formatted by :class:`HelpFormatter` unless told
-    otherwise, and which takes each option by its whole name only: argparse's abbreviations
-    made ``mazesim webots run C.py --robot FILE`` the prefix of ``--robot-controller``, a
-    message about an option never typed; an option the command lacks is refused, naming the
-    commands that take it."""
+    otherwise, and which takes each option by its whole name only (a :class:`BoundedParser`:
+    argparse's abbreviations made ``mazesim webots run C.py --robot FILE`` the prefix of
+    ``--robot-controller``, a message about an option never typed); an option the command lacks
+    is refused, naming the commands that take it."""
 
     def __init__(self, *args: Any, **kwargs: Any) -> None:
         kwargs.setdefault("formatter_class", HelpFormatter)
-        kwargs.setdefault("allow_abbrev", False)
         super().__init__(*args, **kwargs)
 
     def error(self, message: str) -> NoReturn:
@@ -57,8 +57,8 @@ class CommandParser(argparse.ArgumentParser):
                 f" (one of: {', '.join(commands.choices)}; "
                 f"'{self.prog} {commands.metavar} --help' gives its options)"
             )
-        # argparse quotes the word typed whole: a word of a million characters is shortened.
-        super().error(_shortened(message, MOST_MESSAGE))
+        # The base class shortens a word typed too long.
+        super().error(message)
 
     def _check_value(self, action: argparse.Action, value: Any) -> None:
         """argparse's check of a value against the option's choices (or the commands), with the

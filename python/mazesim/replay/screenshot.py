@@ -10,15 +10,15 @@ runs this module on the shipped navigator's demo to make ``docs/replay.png``::
 
 from __future__ import annotations
 
-import argparse
 import shutil
 import sys
 from collections.abc import Sequence
 from pathlib import Path
-from typing import Any, NoReturn
+from typing import Any
 
+from mazesim._arguments import BoundedParser
 from mazesim._atomic import atomic_file
-from mazesim.errors import MOST_MESSAGE, MissingDependencyError, _shortened
+from mazesim.errors import MissingDependencyError
 
 __all__ = ["chromium_problem", "headless_chromium", "main", "save_screenshot"]
 
@@ -106,17 +106,9 @@ def save_screenshot(
         driver.quit()
 
 
-class _Parser(argparse.ArgumentParser):
-    """argparse's parser, its usage error shortened as the ``mazesim`` commands' is: argparse
-    quotes a word typed whole, and one of a million characters made a message as long."""
-
-    def error(self, message: str) -> NoReturn:
-        super().error(_shortened(message, MOST_MESSAGE))
-
-
 def main(argv: Sequence[str] | None = None) -> int:
     """``python -m mazesim.replay.screenshot REPLAY.html OUT.png [--step N]``."""
-    parser = _Parser(
+    parser = BoundedParser(
         prog="python -m mazesim.replay.screenshot",
         description="Screenshot a mazesim HTML replay in headless Chromium.",
     )
