@@ -26,8 +26,8 @@ LAYERS: tuple[tuple[str, ...], ...] = (
     ("maze.py", "odometry.py", "_seeding.py", "plotting.py", "webots", "benchmark",
      "controllers.py", "actions.py", "_checks.py", "_pickling.py", "_display.py"),
     ("render", "_figures.py"),
-    ("sensor_rays.py", "_arguments.py", "_atomic.py", "_closing.py", "_paths.py", "_sizes.py", "_toml.py",
-     "_error_tree.py", "_callers.py", "_hot_paths.py", "_settings.py"),
+    ("sensor_rays.py", "_arguments.py", "_atomic.py", "_closing.py", "_paths.py", "_sizes.py",
+     "_toml.py", "_error_tree.py", "_callers.py", "_hot_paths.py", "_settings.py"),
     ("errors.py", "_core.pyi"),
 )  # fmt: skip
 #: The files of the package that are neither modules nor packages.

@@ -38,6 +38,7 @@ from mazesim.webots.frames import (
     turned,
 )
 from mazesim.webots.importer import MAX_WORLD_BYTES
+from mazesim.webots.list_fields import LIST_TYPES, ListFieldValues
 from mazesim.webots.webots_api import NotSimulated, webots_property
 
 if TYPE_CHECKING:
@@ -74,7 +75,7 @@ def _in(vector: list[float]) -> list[float]:
     return list(nue_to_enu(*vector[:3])) if _file_frame() else vector
 
 
-class Field(NotSimulated):
+class Field(ListFieldValues, NotSimulated):
     """A field of a node: the robot's ``translation``, ``rotation``, ``name``, ``customData``."""
 
     SF_BOOL = 0x01
@@ -107,6 +108,7 @@ class Field(NotSimulated):
         0x08: "SFString",
         0x09: "SFNode",
         0x19: "MFNode",
+        **{number: kind for kind, (number, _) in LIST_TYPES.items()},
     }
 
     def __init__(self, node: Node, name: str, field_type: int) -> None:
@@ -129,8 +131,11 @@ class Field(NotSimulated):
         return self._type_names[self._type]
 
     def getCount(self) -> int:
-        """-1 for a single field; the number of nodes of a ``children`` field."""
-        return len(self._node._children) if self._type == self.MF_NODE else -1
+        """-1 for a single field; the number of nodes of a ``children`` field, or of items of
+        a list field of values."""
+        if self._type == self.MF_NODE:
+            return len(self._node._children)
+        return len(self._node._lists[self._name]) if self._name in self._node._lists else -1
 
     def getMFNode(self, index: int) -> Node | None:
         """The node at ``index`` of a ``children`` field (the root's, or a Solid's, Transform's,
@@ -202,7 +207,11 @@ class Field(NotSimulated):
 
     def removeMF(self, index: int) -> None:
         """Removes the node at ``index`` of a ``children`` field from the running world, as
-        ``Node.remove()`` does; Webots' kind of error for another field."""
+        ``Node.remove()`` does, or the item at ``index`` of a list field of values; Webots'
+        kind of error for another field."""
+        if self._type != self.MF_NODE and self._name in self._node._lists:
+            self._remove_item(index)
+            return
         tree = self._tree("removeMF")
         if tree is None:
             return

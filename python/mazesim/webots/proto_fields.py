@@ -46,6 +46,8 @@ class DeclaredFields:
     floats: frozenset[str] = frozenset()
     #: Its ``SFNode`` fields (empty, ``NULL``, where the file leaves them out).
     nodes: frozenset[str] = frozenset()
+    #: Its list fields of values: kind (``"MFString"``...) and default values, in order.
+    lists: dict[str, tuple[str, tuple[Any, ...]]] = field(default_factory=dict)
 
 
 _RECTANGLE_ARENA = DeclaredFields(
@@ -319,9 +321,9 @@ _READ: dict[int, tuple[Mapping[str, FieldDeclaration], DeclaredFields]] = {}
 
 
 def _read_interface(interface: Mapping[str, FieldDeclaration]) -> DeclaredFields:
-    """A PROTO file's declared single-value fields at their defaults (its ``translation`` and
-    ``rotation`` aside: an instance's pose is the scene's; a default that cannot be read, and
-    an ``MF`` field, aside too), read once."""
+    """A PROTO file's declared fields of values at their defaults (its ``translation`` and
+    ``rotation`` aside: an instance's pose is the scene's; a default that cannot be read aside
+    too), read once."""
     kept = _READ.get(id(interface))
     if kept is not None and kept[0] is interface:
         return kept[1]
@@ -343,6 +345,12 @@ def _parse_interface(interface: Mapping[str, FieldDeclaration]) -> DeclaredField
         if declared.kind == "SFNode":
             nodes.add(name)
             continue
+        if declared.kind.startswith("MF"):
+            if declared.kind != "MFNode":
+                items = _list_default(declared)
+                if items is not None:
+                    read.lists[name] = (declared.kind, items)
+            continue
         try:
             value = field_value(declared.kind, declared.default)
         except (MazesimError, ValueError):
@@ -358,6 +366,19 @@ def _parse_interface(interface: Mapping[str, FieldDeclaration]) -> DeclaredField
         elif declared.kind in _VECTORS and isinstance(value, dict):
             read.numbers[name] = [float(v) for v in value.values()]
     return replace(read, floats=frozenset(floats), nodes=frozenset(nodes))
+
+
+def _list_default(declared: FieldDeclaration) -> tuple[Any, ...] | None:
+    """The values of a list field's default, in order (a vector's numbers one after another),
+    or None when the default cannot be read."""
+    try:
+        items = field_value(declared.kind, declared.default)
+    except (MazesimError, ValueError):
+        return None
+    flat: list[Any] = []
+    for item in items:
+        flat.extend(item.values() if isinstance(item, dict) else [item])
+    return tuple(flat)
 
 
 #: The models the import gives an instance of Webots' E-puck PROTO (``version "2"``: e-puck2).

@@ -128,6 +128,9 @@ class SceneNode:
             that is not the run's robot; their poses are in the slot's frame.
         nodes: The node of each of its fields that holds one node (a Shape's ``geometry`` and
             ``appearance``, an Appearance's ``material``, a Solid's ``boundingObject``).
+        lists: The values of each of its bracketed fields of values (an ImageTexture's ``url``,
+            a sensor's ``lookupTable``), in order, as written (:mod:`mazesim.webots.list_fields`
+            gives them their kind).
         line: The line of its node type in the file (the import report's ``owners`` name the
             obstacles and bodies a node holds by it); 0 when unknown.
     """
@@ -145,6 +148,7 @@ class SceneNode:
     nodes: dict[str, SceneNode] = field(default_factory=dict)
     line: int = 0
     slots: dict[str, list[SceneNode]] = field(default_factory=dict)
+    lists: dict[str, tuple[float | bool | str, ...]] = field(default_factory=dict)
 
     @property
     def base_type(self) -> str:
@@ -806,10 +810,13 @@ def _scene_node(
 ) -> SceneNode:
     """The :class:`SceneNode` of a node of the tree (on ``line``), its ``children`` made
     already."""
-    numbers, flags, strings = {}, {}, {}
+    numbers, flags, strings, lists = {}, {}, {}, {}
     for item in node.own_fields():
         if item.name in _NOT_OWN:
             continue
+        if item.tokens and item.tokens[0].kind == "[" and not item.nodes:
+            listed = [token.value() for token in item.tokens if token.kind in ("string", "word")]
+            lists[item.name] = tuple(v for v in listed if v is not None)
         if (values := item.numbers()) is not None:
             numbers[item.name] = values
         if (flag := item.flag()) is not None:
@@ -834,4 +841,5 @@ def _scene_node(
         strings=strings,
         children=children,
         line=line,
+        lists=lists,
     )

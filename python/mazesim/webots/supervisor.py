@@ -51,10 +51,11 @@ from mazesim.webots.frames import (
 from mazesim.webots.importer import E_PUCK_MODELS, own_build
 from mazesim.webots.inert import ContactPoint
 from mazesim.webots.lights import LIGHT_TYPES
+from mazesim.webots.list_fields import LIST_TYPES, list_items, list_kind
 from mazesim.webots.movie import MovieRecorder
 from mazesim.webots.name_clash import default_name, unique_names
 from mazesim.webots.node_types import NODE_TYPES
-from mazesim.webots.proto_fields import declared_fields
+from mazesim.webots.proto_fields import DeclaredFields, declared_fields
 from mazesim.webots.radio_devices import E_PUCK_CHANNEL
 from mazesim.webots.robot import Robot
 from mazesim.webots.scene import CHILDREN_TYPES, EPUCK_TYPES, GROUPING_TYPES, SceneNode
@@ -147,6 +148,9 @@ class Node(NotSimulated):
         #: Other fields the world file gives the node (a PROTO instance's own fields too).
         self._numbers: dict[str, list[float]] = {}
         self._flags: dict[str, bool] = {}
+        #: Its list fields of values: ``Field`` type and items (:mod:`.list_fields`).
+        self._list_types: dict[str, int] = {}
+        self._lists: dict[str, list[Any]] = {}
         #: The node of each of its fields that holds one (a Shape's ``geometry``...).
         self._field_nodes: dict[str, Node] = {}
         #: The line of its node type in the world file (0: unknown).
@@ -203,6 +207,21 @@ class Node(NotSimulated):
             self._strings.setdefault(name, text)
         for name, flag in declared.flags.items():
             self._flags.setdefault(name, flag)
+        self._take_lists(node, declared)
+
+    def _take_lists(self, node: SceneNode, declared: DeclaredFields) -> None:
+        """Takes the node's list fields of values the world file writes, each of the kind its
+        PROTO or base node declares, and those its PROTO declares that the file leaves out."""
+        kinds = {name: kind for name, (kind, _) in declared.lists.items()}
+        types = (node.type_name, node.base_type)
+        written = dict(node.lists)
+        for name, (_, values) in declared.lists.items():
+            written.setdefault(name, values)
+        for name, values in written.items():
+            kind = list_kind(types, name, values, kinds)
+            if kind is not None:
+                self._list_types[name] = LIST_TYPES[kind][0]
+                self._lists[name] = list_items(kind, values)
 
     def _adopt(self, children: list[Node]) -> None:
         """Makes ``children`` the node's ``children`` field (a node a ``USE`` lists again
@@ -547,6 +566,7 @@ class Node(NotSimulated):
         if self._id == 0:
             return {"children": Field.MF_NODE}
         types = dict.fromkeys(self._strings, Field.SF_STRING)
+        types.update(self._list_types)  # a field of nodes below (an empty ``children``) wins
         if self._type_name in GROUPING_TYPES or self._holds_children:
             types["children"] = Field.MF_NODE
         if self._base_type in _END_POINT_TYPES:

@@ -526,6 +526,58 @@ WbNodeRef wb_supervisor_field_get_mf_node(WbFieldRef field, int index) {
   return answer_node(0);
 }
 
+/* An item of a list field of values, asked each time. */
+static void ask_item(WbFieldRef field, const char *function, int index) {
+  call_field(function, field);
+  call_int(index);
+  call_end();
+}
+
+bool wb_supervisor_field_get_mf_bool(WbFieldRef field, int index) {
+  ask_item(field, "wb_supervisor_field_get_mf_bool", index);
+  return answer_int(0) != 0;
+}
+
+int wb_supervisor_field_get_mf_int32(WbFieldRef field, int index) {
+  ask_item(field, "wb_supervisor_field_get_mf_int32", index);
+  return answer_int(0);
+}
+
+double wb_supervisor_field_get_mf_float(WbFieldRef field, int index) {
+  ask_item(field, "wb_supervisor_field_get_mf_float", index);
+  return answer_type(0) == VALUE_NONE ? 0.0 : answer_double(0);
+}
+
+static const double *item_vector(WbFieldRef field, int index, int count, const char *function) {
+  ask_item(field, function, index);
+  return field ? numbers(field->values, count) : NULL;
+}
+
+const double *wb_supervisor_field_get_mf_vec2f(WbFieldRef field, int index) {
+  return item_vector(field, index, 2, "wb_supervisor_field_get_mf_vec2f");
+}
+
+const double *wb_supervisor_field_get_mf_vec3f(WbFieldRef field, int index) {
+  return item_vector(field, index, 3, "wb_supervisor_field_get_mf_vec3f");
+}
+
+const double *wb_supervisor_field_get_mf_rotation(WbFieldRef field, int index) {
+  return item_vector(field, index, 4, "wb_supervisor_field_get_mf_rotation");
+}
+
+const double *wb_supervisor_field_get_mf_color(WbFieldRef field, int index) {
+  return item_vector(field, index, 3, "wb_supervisor_field_get_mf_color");
+}
+
+const char *wb_supervisor_field_get_mf_string(WbFieldRef field, int index) {
+  ask_item(field, "wb_supervisor_field_get_mf_string", index);
+  if (!field)
+    return "";
+  free(field->text);
+  field->text = answer_text(0);
+  return field->text ? field->text : "";
+}
+
 void wb_supervisor_field_set_sf_bool(WbFieldRef field, bool value) {
   call_field("wb_supervisor_field_set_sf_bool", field);
   call_int(value ? 1 : 0);
@@ -547,6 +599,96 @@ void wb_supervisor_field_set_sf_float(WbFieldRef field, double value) {
 static void set_vector(WbFieldRef field, const double *values, int count, const char *function) {
   call_field(function, field);
   call_doubles(values, values ? count : -1);
+  call_end();
+}
+
+/* An item of a list field of values set or inserted: a whole number or flag, a number
+   (count -2: one double, sent as a number), or a vector of count numbers. */
+static void item_int(WbFieldRef field, int index, int value, const char *function) {
+  call_field(function, field);
+  call_int(index);
+  call_int(value);
+  call_end();
+}
+
+static void set_item(WbFieldRef field, int index, const double *values, int count,
+                     const char *function) {
+  call_field(function, field);
+  call_int(index);
+  if (count == -2)
+    call_double(*values);
+  else
+    call_doubles(values, values ? count : -1);
+  call_end();
+}
+
+void wb_supervisor_field_set_mf_bool(WbFieldRef field, int index, bool value) {
+  item_int(field, index, value ? 1 : 0, "wb_supervisor_field_set_mf_bool");
+}
+
+void wb_supervisor_field_set_mf_int32(WbFieldRef field, int index, int value) {
+  item_int(field, index, value, "wb_supervisor_field_set_mf_int32");
+}
+
+void wb_supervisor_field_set_mf_float(WbFieldRef field, int index, double value) {
+  set_item(field, index, &value, -2, "wb_supervisor_field_set_mf_float");
+}
+
+void wb_supervisor_field_set_mf_vec2f(WbFieldRef field, int index, const double values[2]) {
+  set_item(field, index, values, 2, "wb_supervisor_field_set_mf_vec2f");
+}
+
+void wb_supervisor_field_set_mf_vec3f(WbFieldRef field, int index, const double values[3]) {
+  set_item(field, index, values, 3, "wb_supervisor_field_set_mf_vec3f");
+}
+
+void wb_supervisor_field_set_mf_rotation(WbFieldRef field, int index, const double values[4]) {
+  set_item(field, index, values, 4, "wb_supervisor_field_set_mf_rotation");
+}
+
+void wb_supervisor_field_set_mf_color(WbFieldRef field, int index, const double values[3]) {
+  set_item(field, index, values, 3, "wb_supervisor_field_set_mf_color");
+}
+
+void wb_supervisor_field_set_mf_string(WbFieldRef field, int index, const char *value) {
+  call_field("wb_supervisor_field_set_mf_string", field);
+  call_int(index);
+  call_text(value);
+  call_end();
+}
+
+void wb_supervisor_field_insert_mf_bool(WbFieldRef field, int index, bool value) {
+  item_int(field, index, value ? 1 : 0, "wb_supervisor_field_insert_mf_bool");
+}
+
+void wb_supervisor_field_insert_mf_int32(WbFieldRef field, int index, int value) {
+  item_int(field, index, value, "wb_supervisor_field_insert_mf_int32");
+}
+
+void wb_supervisor_field_insert_mf_float(WbFieldRef field, int index, double value) {
+  set_item(field, index, &value, -2, "wb_supervisor_field_insert_mf_float");
+}
+
+void wb_supervisor_field_insert_mf_vec2f(WbFieldRef field, int index, const double values[2]) {
+  set_item(field, index, values, 2, "wb_supervisor_field_insert_mf_vec2f");
+}
+
+void wb_supervisor_field_insert_mf_vec3f(WbFieldRef field, int index, const double values[3]) {
+  set_item(field, index, values, 3, "wb_supervisor_field_insert_mf_vec3f");
+}
+
+void wb_supervisor_field_insert_mf_rotation(WbFieldRef field, int index, const double values[4]) {
+  set_item(field, index, values, 4, "wb_supervisor_field_insert_mf_rotation");
+}
+
+void wb_supervisor_field_insert_mf_color(WbFieldRef field, int index, const double values[3]) {
+  set_item(field, index, values, 3, "wb_supervisor_field_insert_mf_color");
+}
+
+void wb_supervisor_field_insert_mf_string(WbFieldRef field, int index, const char *value) {
+  call_field("wb_supervisor_field_insert_mf_string", field);
+  call_int(index);
+  call_text(value);
   call_end();
 }
 

@@ -63,6 +63,58 @@ namespace webots {
     std::string getSFString() const { return wb_supervisor_field_get_sf_string(ref); }
     inline Node *getSFNode() const;
     inline Node *getMFNode(int index) const;
+    bool getMFBool(int index) const { return wb_supervisor_field_get_mf_bool(ref, index); }
+    int getMFInt32(int index) const { return wb_supervisor_field_get_mf_int32(ref, index); }
+    double getMFFloat(int index) const { return wb_supervisor_field_get_mf_float(ref, index); }
+    const double *getMFVec2f(int index) const {
+      return wb_supervisor_field_get_mf_vec2f(ref, index);
+    }
+    const double *getMFVec3f(int index) const {
+      return wb_supervisor_field_get_mf_vec3f(ref, index);
+    }
+    const double *getMFRotation(int index) const {
+      return wb_supervisor_field_get_mf_rotation(ref, index);
+    }
+    const double *getMFColor(int index) const {
+      return wb_supervisor_field_get_mf_color(ref, index);
+    }
+    std::string getMFString(int index) const { return wb_supervisor_field_get_mf_string(ref, index); }
+    void setMFBool(int index, bool value) { wb_supervisor_field_set_mf_bool(ref, index, value); }
+    void setMFInt32(int index, int value) { wb_supervisor_field_set_mf_int32(ref, index, value); }
+    void setMFFloat(int index, double value) { wb_supervisor_field_set_mf_float(ref, index, value); }
+    void setMFVec2f(int index, const double values[2]) {
+      wb_supervisor_field_set_mf_vec2f(ref, index, values);
+    }
+    void setMFVec3f(int index, const double values[3]) {
+      wb_supervisor_field_set_mf_vec3f(ref, index, values);
+    }
+    void setMFRotation(int index, const double values[4]) {
+      wb_supervisor_field_set_mf_rotation(ref, index, values);
+    }
+    void setMFColor(int index, const double values[3]) {
+      wb_supervisor_field_set_mf_color(ref, index, values);
+    }
+    void setMFString(int index, const std::string &value) {
+      wb_supervisor_field_set_mf_string(ref, index, value.c_str());
+    }
+    void insertMFBool(int index, bool value) { wb_supervisor_field_insert_mf_bool(ref, index, value); }
+    void insertMFInt32(int index, int value) { wb_supervisor_field_insert_mf_int32(ref, index, value); }
+    void insertMFFloat(int index, double value) { wb_supervisor_field_insert_mf_float(ref, index, value); }
+    void insertMFVec2f(int index, const double values[2]) {
+      wb_supervisor_field_insert_mf_vec2f(ref, index, values);
+    }
+    void insertMFVec3f(int index, const double values[3]) {
+      wb_supervisor_field_insert_mf_vec3f(ref, index, values);
+    }
+    void insertMFRotation(int index, const double values[4]) {
+      wb_supervisor_field_insert_mf_rotation(ref, index, values);
+    }
+    void insertMFColor(int index, const double values[3]) {
+      wb_supervisor_field_insert_mf_color(ref, index, values);
+    }
+    void insertMFString(int index, const std::string &value) {
+      wb_supervisor_field_insert_mf_string(ref, index, value.c_str());
+    }
     void setSFBool(bool value) { wb_supervisor_field_set_sf_bool(ref, value); }
     void setSFInt32(int value) { wb_supervisor_field_set_sf_int32(ref, value); }
     void setSFFloat(double value) { wb_supervisor_field_set_sf_float(ref, value); }
