@@ -611,6 +611,13 @@ static void item_int(WbFieldRef field, int index, int value, const char *functio
   call_end();
 }
 
+static void item_text(WbFieldRef field, int index, const char *value, const char *function) {
+  call_field(function, field);
+  call_int(index);
+  call_text(value);
+  call_end();
+}
+
 static void set_item(WbFieldRef field, int index, const double *values, int count,
                      const char *function) {
   call_field(function, field);
@@ -622,75 +629,27 @@ static void set_item(WbFieldRef field, int index, const double *values, int coun
   call_end();
 }
 
-void wb_supervisor_field_set_mf_bool(WbFieldRef field, int index, bool value) {
-  item_int(field, index, value ? 1 : 0, "wb_supervisor_field_set_mf_bool");
-}
+/* Webots' setter and inserter of one kind of list item (wb_supervisor_field_set_mf_KIND and
+   wb_supervisor_field_insert_mf_KIND): the same call under the two names, `function` naming
+   the one called. */
+#define LIST_ITEM_WRITERS(kind, parameter, ...)                                                 \
+  void wb_supervisor_field_set_mf_##kind(WbFieldRef field, int index, parameter) {              \
+    const char *function = "wb_supervisor_field_set_mf_" #kind;                                 \
+    __VA_ARGS__;                                                                                \
+  }                                                                                             \
+  void wb_supervisor_field_insert_mf_##kind(WbFieldRef field, int index, parameter) {           \
+    const char *function = "wb_supervisor_field_insert_mf_" #kind;                              \
+    __VA_ARGS__;                                                                                \
+  }
 
-void wb_supervisor_field_set_mf_int32(WbFieldRef field, int index, int value) {
-  item_int(field, index, value, "wb_supervisor_field_set_mf_int32");
-}
-
-void wb_supervisor_field_set_mf_float(WbFieldRef field, int index, double value) {
-  set_item(field, index, &value, -2, "wb_supervisor_field_set_mf_float");
-}
-
-void wb_supervisor_field_set_mf_vec2f(WbFieldRef field, int index, const double values[2]) {
-  set_item(field, index, values, 2, "wb_supervisor_field_set_mf_vec2f");
-}
-
-void wb_supervisor_field_set_mf_vec3f(WbFieldRef field, int index, const double values[3]) {
-  set_item(field, index, values, 3, "wb_supervisor_field_set_mf_vec3f");
-}
-
-void wb_supervisor_field_set_mf_rotation(WbFieldRef field, int index, const double values[4]) {
-  set_item(field, index, values, 4, "wb_supervisor_field_set_mf_rotation");
-}
-
-void wb_supervisor_field_set_mf_color(WbFieldRef field, int index, const double values[3]) {
-  set_item(field, index, values, 3, "wb_supervisor_field_set_mf_color");
-}
-
-void wb_supervisor_field_set_mf_string(WbFieldRef field, int index, const char *value) {
-  call_field("wb_supervisor_field_set_mf_string", field);
-  call_int(index);
-  call_text(value);
-  call_end();
-}
-
-void wb_supervisor_field_insert_mf_bool(WbFieldRef field, int index, bool value) {
-  item_int(field, index, value ? 1 : 0, "wb_supervisor_field_insert_mf_bool");
-}
-
-void wb_supervisor_field_insert_mf_int32(WbFieldRef field, int index, int value) {
-  item_int(field, index, value, "wb_supervisor_field_insert_mf_int32");
-}
-
-void wb_supervisor_field_insert_mf_float(WbFieldRef field, int index, double value) {
-  set_item(field, index, &value, -2, "wb_supervisor_field_insert_mf_float");
-}
-
-void wb_supervisor_field_insert_mf_vec2f(WbFieldRef field, int index, const double values[2]) {
-  set_item(field, index, values, 2, "wb_supervisor_field_insert_mf_vec2f");
-}
-
-void wb_supervisor_field_insert_mf_vec3f(WbFieldRef field, int index, const double values[3]) {
-  set_item(field, index, values, 3, "wb_supervisor_field_insert_mf_vec3f");
-}
-
-void wb_supervisor_field_insert_mf_rotation(WbFieldRef field, int index, const double values[4]) {
-  set_item(field, index, values, 4, "wb_supervisor_field_insert_mf_rotation");
-}
-
-void wb_supervisor_field_insert_mf_color(WbFieldRef field, int index, const double values[3]) {
-  set_item(field, index, values, 3, "wb_supervisor_field_insert_mf_color");
-}
-
-void wb_supervisor_field_insert_mf_string(WbFieldRef field, int index, const char *value) {
-  call_field("wb_supervisor_field_insert_mf_string", field);
-  call_int(index);
-  call_text(value);
-  call_end();
-}
+LIST_ITEM_WRITERS(bool, bool value, item_int(field, index, value ? 1 : 0, function))
+LIST_ITEM_WRITERS(int32, int value, item_int(field, index, value, function))
+LIST_ITEM_WRITERS(float, double value, set_item(field, index, &value, -2, function))
+LIST_ITEM_WRITERS(vec2f, const double values[2], set_item(field, index, values, 2, function))
+LIST_ITEM_WRITERS(vec3f, const double values[3], set_item(field, index, values, 3, function))
+LIST_ITEM_WRITERS(rotation, const double values[4], set_item(field, index, values, 4, function))
+LIST_ITEM_WRITERS(color, const double values[3], set_item(field, index, values, 3, function))
+LIST_ITEM_WRITERS(string, const char *value, item_text(field, index, value, function))
 
 void wb_supervisor_field_set_sf_vec2f(WbFieldRef field, const double values[2]) {
   set_vector(field, values, 2, "wb_supervisor_field_set_sf_vec2f");
