@@ -23,10 +23,11 @@ robot and the bodies, and quits it with a status (``mazesim webots run`` exits w
 from __future__ import annotations
 
 import math
+from pathlib import Path
 from typing import Any
 
 from mazesim._atomic import atomic_file
-from mazesim.errors import MazesimError
+from mazesim.errors import MazesimError, _shortened
 from mazesim.webots import simulation as _simulations
 from mazesim.webots.devices import _print_error
 from mazesim.webots.field import (
@@ -1200,6 +1201,31 @@ class Supervisor(Robot):
             fleet.reload_world()
         else:
             self.simulationReset()
+
+    def worldLoad(self, filename: str) -> None:
+        """Loads a world, as far as a run of one world can: the world being run (its own file,
+        by any path) is reloaded as :meth:`worldReload` reloads it; for another world the run
+        ends here, as every controller of the world ends in Webots when it opens another (this
+        one's next ``step`` returns -1), with a line saying so and how to run that world
+        (``mazesim webots run``, each world its own run). A name without ``.wbt`` or a file
+        that is not there is refused with Webots' kind of error, and the run goes on."""
+        wanted = Path(str(filename))
+        if wanted.suffix != ".wbt" or not wanted.is_file():
+            _print_error(
+                f"Error: wb_supervisor_world_load(): '{_shortened(str(filename))}' is not a "
+                ".wbt world file that exists; the world goes on."
+            )
+            return
+        own = self._simulation.report.get("path") if self._simulation.report else None
+        if own is not None and wanted.resolve() == Path(str(own)).resolve():
+            self.worldReload()
+            return
+        _print_error(
+            f"mazesim: Supervisor.worldLoad('{_shortened(str(filename))}'): a run simulates one "
+            "world, so it ends here, where Webots would open that world and start its "
+            f"controllers (run it on its own: mazesim webots run {_shortened(str(wanted))})."
+        )
+        self._simulation.quit_status = 0
 
     def worldSave(self, filename: str | None = None) -> bool:
         """Writes the world as it stands to ``filename`` (a ``.wbt`` path, relative to the
