@@ -11,7 +11,7 @@ import contextlib
 import threading
 from collections.abc import Iterator
 
-__all__ = ["STATE", "users_code"]
+__all__ = ["STATE", "thread_flag", "users_code"]
 
 #: Per thread, whether a checked call is running (``STATE.inside``): the calls it makes to other
 #: public functions are the package's own and are not checked again (the check costs once per
@@ -20,14 +20,20 @@ STATE = threading.local()
 
 
 @contextlib.contextmanager
-def users_code() -> Iterator[None]:
+def thread_flag(state: threading.local, name: str, value: bool) -> Iterator[None]:
+    """Within it, this thread's flag ``name`` of ``state`` is ``value``; as it was after (False
+    where it was never set)."""
+    before = getattr(state, name, False)
+    setattr(state, name, value)
+    try:
+        yield
+    finally:
+        setattr(state, name, before)
+
+
+def users_code() -> contextlib.AbstractContextManager[None]:
     """Runs the user's own code (a controller the package executes) as a caller from outside:
     its calls to public functions are checked, as they would be from a script of its own,
     instead of passing as the package's calls to itself (a controller's
     ``motor.setVelocity("fast")`` raised the ``ValueError`` of a line deep in the package)."""
-    inside = getattr(STATE, "inside", False)
-    STATE.inside = False
-    try:
-        yield
-    finally:
-        STATE.inside = inside
+    return thread_flag(STATE, "inside", False)

@@ -34,6 +34,7 @@ from collections.abc import Iterator
 from typing import TYPE_CHECKING, Any
 
 from mazesim._atomic import atomic_file
+from mazesim._callers import thread_flag
 from mazesim._paths import output_path
 from mazesim.errors import InvalidArgumentError, _shown
 
@@ -153,16 +154,10 @@ def _install_drawable_texts() -> None:
     Text.get_text = get_text  # type: ignore[method-assign]
 
 
-@contextlib.contextmanager
-def _texts_drawable() -> Iterator[None]:
+def _texts_drawable() -> contextlib.AbstractContextManager[None]:
     """Within it, this thread's figures draw their texts as :func:`drawable_text` shows them."""
     _install_drawable_texts()
-    before = getattr(_DRAWING, "active", False)
-    _DRAWING.active = True
-    try:
-        yield
-    finally:
-        _DRAWING.active = before
+    return thread_flag(_DRAWING, "active", True)
 
 
 #: Inches left between a figure's edge and a drawing moved in from past it.
