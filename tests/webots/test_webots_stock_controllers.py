@@ -12,6 +12,7 @@ import pytest
 from mazesim.webots import stock_controllers
 from mazesim.webots.lockstep import controller_name, controller_of, run_world
 from mazesim_process import mazesim_command
+from supervised_world import supervisor_in
 
 #: Two e-pucks in an arena: one whose controller only steps, one that names no controller.
 WORLD = """#VRML_SIM R2023b utf8
@@ -163,3 +164,50 @@ def test_e_pucks_sharing_the_default_name_are_told_apart_by_def_or_index() -> No
     alone = [RobotRun(0, robot_label(robots[0]), "E-puck", None, "")]
     _tell_apart(alone, robots[:1])
     assert alone[0].name == "e-puck"
+
+
+#: An e-puck saved expanded (a plain ``Robot`` with the e-puck's devices) that names no
+#: controller, beside one that does: Webots runs ``<generic>`` on the first, which runs nothing.
+PLAIN_WORLD = """#VRML_SIM R2023b utf8
+WorldInfo { basicTimeStep 32 }
+RectangleArena { floorSize 1 1 }
+E-puck { translation -0.3 0.3 0 name "still" controller "still" }
+Robot {
+  translation 0 0 0
+  children [
+    DistanceSensor { translation 0.03 -0.01 0.033 rotation 0 0 1 -0.3 name "ps0" }
+    HingeJoint { device [ RotationalMotor { name "left wheel motor" } ]
+      endPoint Solid { translation 0 0.026 0.02 } }
+    HingeJoint { device [ RotationalMotor { name "right wheel motor" } ]
+      endPoint Solid { translation 0 -0.026 0.02 } }
+  ]
+  name "plain"
+  model "GCtronic e-puck"
+}
+"""
+
+
+def test_a_plain_robot_e_puck_without_a_controller_field_runs_webots_generic(
+    tmp_path: Path,
+) -> None:
+    """A public course world's e-puck saved expanded drove about as the E-puck PROTO's default
+    avoider would, where Webots runs a plain Robot node's default, ``<generic>``: nothing."""
+    plain = {"name": "p", "model": "E-puck", "controller": None, "node_type": "Robot"}
+    assert controller_name(plain) == "<generic>"
+    assert controller_name({**plain, "node_type": "E-puck"}) == "e-puck_avoid_obstacles"
+    (tmp_path / "worlds").mkdir()
+    (tmp_path / "worlds" / "w.wbt").write_text(PLAIN_WORLD)
+    (tmp_path / "controllers" / "still").mkdir(parents=True)
+    (tmp_path / "controllers" / "still" / "still.py").write_text(STILL)
+    run = run_world(str(tmp_path / "worlds" / "w.wbt"), seconds=2.0, seed=1)
+    assert [r.name for r in run.robots] == ["still", "plain"]
+    assert run.robots[1].controller is None
+    assert run.robots[1].distance_m < 1e-6
+
+
+def test_a_plain_robot_supervisor_reads_its_own_controller_field_as_generic(
+    tmp_path: Path,
+) -> None:
+    text = PLAIN_WORLD.replace('model "GCtronic e-puck"', 'model "GCtronic e-puck" supervisor TRUE')
+    robot = supervisor_in(tmp_path, text, robot="Robot {")
+    assert robot.getSelf().getField("controller").getSFString() == "<generic>"

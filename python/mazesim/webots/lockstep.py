@@ -81,7 +81,7 @@ from mazesim.webots.native_controller import (
 )
 from mazesim.webots.own_sensors import own_sensors
 from mazesim.webots.process_template import ControllerProcesses
-from mazesim.webots.proto_fields import declared_fields, robot_label
+from mazesim.webots.proto_fields import default_controller, robot_label
 from mazesim.webots.radio import Radio
 from mazesim.webots.requirements import PreparedController, prepare_controller, unbuilt
 from mazesim.webots.robots_changed import RemovedRobot, RobotChange, robot_change
@@ -739,12 +739,10 @@ def _other_language(name: str, world_path: str) -> str:
 
 def controller_name(robot: Mapping[str, Any]) -> str:
     """The controller a robot's node names: its ``controller`` field, or where the world file
-    leaves the field out, the one its PROTO declares (the E-puck's ``e-puck_avoid_obstacles``);
+    leaves the field out, its default (:func:`~mazesim.webots.proto_fields.default_controller`);
     "" for none."""
     name = robot.get("controller")
-    if name is None:
-        name = declared_fields(str(robot.get("model") or "")).strings.get("controller", "")
-    return str(name)
+    return default_controller(robot) if name is None else str(name)
 
 
 def run_world(

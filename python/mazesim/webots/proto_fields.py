@@ -31,7 +31,7 @@ from mazesim.webots.proto.values import field_value
 from mazesim.webots.radio_devices import E_PUCK_CHANNEL
 from mazesim.webots.scene import BASE_NAMES
 
-__all__ = ["DeclaredFields", "declared_fields", "robot_label"]
+__all__ = ["DeclaredFields", "declared_fields", "default_controller", "robot_label"]
 
 
 @dataclass(frozen=True)
@@ -397,3 +397,15 @@ def robot_label(robot: Mapping[str, Any]) -> str:
     model = robot.get("model")
     declared = declared_fields("E-puck" if model in _E_PUCK_MODELS else str(model))
     return str(declared.strings.get("name") or robot.get("def_name") or model)
+
+
+def default_controller(robot: Mapping[str, Any]) -> str:
+    """The controller a robot of the import's ``robots`` runs where its node leaves the
+    ``controller`` field out, as Webots reads the field: the default its PROTO declares (the
+    E-puck's ``e-puck_avoid_obstacles``, a project PROTO's own), or for a plain ``Robot`` node
+    (an e-puck saved expanded too, whose model is the E-puck's) Webots' ``<generic>``, which
+    runs nothing; "" where nothing is declared."""
+    model = str(robot.get("model") or "")
+    if robot.get("node_type") in BASE_NAMES and model in _E_PUCK_MODELS:
+        return "<generic>"
+    return declared_fields(model).strings.get("controller", "")

@@ -56,7 +56,7 @@ from mazesim.webots.list_fields import LIST_TYPES, list_items, list_kind
 from mazesim.webots.movie import MovieRecorder
 from mazesim.webots.name_clash import default_name, unique_names
 from mazesim.webots.node_types import NODE_TYPES
-from mazesim.webots.proto_fields import DeclaredFields, declared_fields
+from mazesim.webots.proto_fields import DeclaredFields, declared_fields, default_controller
 from mazesim.webots.radio_devices import E_PUCK_CHANNEL
 from mazesim.webots.robot import Robot
 from mazesim.webots.scene import CHILDREN_TYPES, EPUCK_TYPES, GROUPING_TYPES, SceneNode
@@ -899,7 +899,13 @@ class Supervisor(Robot):
         if scene.robot_controller is not None or self._simulation.report.get("robot_model"):
             # The robot node's field as Webots reads it: the file's, else its PROTO's default
             # (the E-puck's e-puck_avoid_obstacles), else a Robot node's, "<generic>".
-            declared = declared_fields(robot_type).strings.get("controller", "<generic>")
+            report = self._simulation.report
+            line = report.get("robot_line")
+            own = [r for r in report.get("robots") or () if r.get("line") == line]
+            declared = default_controller(own[0]) if own else ""
+            declared = declared or declared_fields(robot_type).strings.get(
+                "controller", "<generic>"
+            )
             self._self._strings["controller"] = (
                 declared if scene.robot_controller is None else scene.robot_controller
             )
