@@ -452,3 +452,94 @@ def test_in_a_world_run_a_robot_crossing_the_line_of_sight_hides_the_box(
     counts = json.loads((tmp_path / "watcher.json").read_text())
     assert counts[0] == 0, "the screen e-puck stands between the camera and the box"
     assert counts[-1] == 1, "it drove out of the way"
+
+
+def test_an_object_a_robot_carries_moves_with_it_and_its_body_hides_it_not() -> None:
+    """A public follower project's leader e-puck carries a Can in its turret slot: the object
+    stayed where the import put it, hidden by its own carrier's body, and the follower found
+    nothing to follow (its ``getRecognitionObjects()[0]`` raised)."""
+    carried = {**green_target(12, 3, [0.3, 0.0, 0.06], [0.06, 0.06, 0.12]), "robot_line": 9}
+    report = {
+        "robots": [
+            {"line": 1, "profile": "e-puck", "pose": [0.0, 0.0, 0.0]},
+            {"line": 9, "profile": "e-puck", "pose": [0.3, 0.0, math.pi]},
+        ]
+    }
+    camera = CameraPose(0.0, 0.0, 0.028, 0.0, 0.0, 52, 39, 0.84)
+    no_walls = WallBoxes(World.from_toml('format = "mazesim-world"\nversion = 1\n'))
+    recogniser = Recogniser({**SETTINGS, "occlusion": 1}, [carried], report)
+    assert recogniser.follows_robots
+    (seen,) = recogniser.recognise(camera, no_walls, [(0.0, 0.0, 0.0), (0.3, 0.0, math.pi)])
+    assert seen.position[0] == pytest.approx(0.3)
+    # The carrier drove 0.2 m on and turned: the object went with it.
+    (seen,) = recogniser.recognise(camera, no_walls, [(0.0, 0.0, 0.0), (0.5, 0.05, 0.0)])
+    assert seen.position[:2] == pytest.approx((0.5, 0.05))
+    # Removed with its carrier.
+    assert recogniser.recognise(camera, no_walls, [(0.0, 0.0, 0.0), None]) == []
+
+
+#: A follower e-puck whose turret camera recognises, and a leader carrying a red Solid in its
+#: turret slot, 0.3 m ahead; the leader drives away.
+CARRIED_WORLD = """#VRML_SIM R2023b utf8
+WorldInfo { basicTimeStep 32 }
+RectangleArena { floorSize 3 3 }
+E-puck {
+  name "follower"
+  controller "follower"
+  turretSlot [
+    Camera { translation 0.0395 0 -0.0206 name "rec" width 52 height 39 fieldOfView 0.84
+      recognition Recognition { } }
+  ]
+}
+E-puck {
+  translation 0.3 0 0
+  name "leader"
+  controller "leader"
+  turretSlot [
+    Solid { translation 0 0 0.03 name "flag" model "flag" recognitionColors [ 0.666667 0 0 ]
+      children [ Shape { geometry DEF FLAG Cylinder { height 0.06 radius 0.015 } } ] }
+  ]
+}
+"""
+FOLLOWER = """import json, os
+from controller import Robot
+robot = Robot()
+camera = robot.getDevice("rec")
+camera.enable(32)
+camera.recognitionEnable(32)
+seen = []
+while robot.step(32) != -1:
+    objects = camera.getRecognitionObjects()
+    seen.append([list(o.getPosition()) for o in objects])
+with open(os.path.join(os.environ["SWARM_LOG"], "seen.json"), "w") as out:
+    json.dump(seen, out)
+"""
+LEADER = """from controller import Robot
+robot = Robot()
+for name in ("left wheel motor", "right wheel motor"):
+    motor = robot.getDevice(name)
+    motor.setPosition(float("inf"))
+    motor.setVelocity(4.0)
+while robot.step(32) != -1:
+    pass
+"""
+
+
+@pytest.mark.usefixtures("own_cache")
+def test_in_a_world_run_the_follower_sees_the_object_its_leader_carries_go_away(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    (tmp_path / "worlds").mkdir()
+    (tmp_path / "worlds" / "w.wbt").write_text(CARRIED_WORLD)
+    for name, text in (("follower", FOLLOWER), ("leader", LEADER)):
+        (tmp_path / "controllers" / name).mkdir(parents=True)
+        (tmp_path / "controllers" / name / f"{name}.py").write_text(text)
+    monkeypatch.setenv("SWARM_LOG", str(tmp_path))
+    run = run_world(str(tmp_path / "worlds" / "w.wbt"), seconds=2.0, seed=1)
+    assert all(r.exit_status == 0 for r in run.robots), [r.error for r in run.robots]
+    seen = json.loads((tmp_path / "seen.json").read_text())
+    assert len(seen[0]) == 1 and len(seen[-1]) == 1
+    # 0.27 m ahead of the camera (3 cm ahead of the follower's centre) after the leader's
+    # first step, then as far as the leader drove: 4 rad/s on wheels of 2 cm for 2 s.
+    assert seen[0][0][0] == pytest.approx(0.27 + 4.0 * 0.02 * 0.032, abs=0.003)
+    assert seen[-1][0][0] == pytest.approx(0.27 + 4.0 * 0.02 * 2.0, abs=0.01)

@@ -22,7 +22,9 @@ is out of view once its centre lies beyond a side by more than half its size. It
 size on the image project the box's corners as Webots' planar camera does
 (``src/webots/nodes/WbCamera.cpp``, ``WbObjectDetection.cpp``). The camera frame is Webots'
 since R2022a, x forward, y left, z up; for a world of an earlier release, x right, y up, z
-backward (the object ahead has a negative z). Robots follow their live pose, a Solid that holds
+backward (the object ahead has a negative z). Robots follow their live pose, and so does an
+object a robot carries (among its children or in a slot; that robot's body does not hide it),
+a Solid that holds
 one movable body that body's, a Solid with walls that a supervisor moved (it, or a node above
 it) the move's. Segmentation images are not simulated.
 """
@@ -371,6 +373,13 @@ class CameraPose:
 Pose2 = tuple[float, float, float]
 
 
+def _start_pose(robot: Mapping[str, Any]) -> Pose2:
+    """A robot's pose seen from above as the import placed it (x, y, yaw)."""
+    pose = [float(v) for v in (robot.get("pose") or ())][:3]
+    x, y, yaw = pose + [0.0] * (3 - len(pose))
+    return (x, y, yaw)
+
+
 class Recogniser:
     """What a camera with a Recognition node recognises (see the module's docstring)."""
 
@@ -400,6 +409,15 @@ class Recogniser:
         self._robot = {int(r["line"]): i for i, r in enumerate(robots) if "line" in r}
         #: The camera's own robot's index (its body hides nothing from it).
         self._own_robot = self._robot.get(robot_line)
+        #: The robot index of each object a robot carries (among its children or in a slot): it
+        #: moves with that robot, whose body does not hide it; with each robot's start pose.
+        self._carrier = {
+            int(o["line"]): self._robot[carrier]
+            for o in self._objects
+            if (carrier := int(o.get("robot_line", 0) or 0)) in self._robot
+            and int(o["line"]) not in self._robot
+        }
+        self._starts: list[Pose2] = [_start_pose(r) for r in robots]
         #: The body radius of each robot simulated as one (None: its shapes are walls).
         self._radii = robot_body_radii(report)
         held = held_by_line(report)
@@ -431,8 +449,8 @@ class Recogniser:
 
     @property
     def follows_robots(self) -> bool:
-        """Whether some object is a robot, whose live pose is needed."""
-        return any(int(o["line"]) in self._robot for o in self._objects)
+        """Whether some object is a robot or a robot carries it, whose live pose is needed."""
+        return bool(self._carrier) or any(int(o["line"]) in self._robot for o in self._objects)
 
     @property
     def follows_bodies(self) -> bool:
@@ -503,6 +521,13 @@ class Recogniser:
                 return None
             px, py, pyaw = robot
             return (float(px), float(py), z), float(pyaw)
+        carrier = self._carrier.get(line)
+        if robot_poses is not None and carrier is not None and carrier < len(robot_poses):
+            now = robot_poses[carrier]
+            if now is None:
+                return None  # removed with the robot that carries it
+            x, y, yaw = composed(now, relative(self._starts[carrier], (x, y, yaw)))
+            return (x, y, z), yaw
         if body_poses is not None and line in self._body:
             index, (sx, sy, syaw) = self._body[line]
             if index < len(body_poses):
@@ -619,7 +644,7 @@ class Recogniser:
         length = math.hypot(dx, dy)
         if length == 0.0:
             return False
-        itself = self._robot.get(candidate.line)
+        itself = self._robot.get(candidate.line, self._carrier.get(candidate.line))
         count = min(len(robot_poses), len(self._radii))
         radii = np.array(
             [
