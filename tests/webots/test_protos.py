@@ -357,6 +357,15 @@ def test_balls_and_barrels_stand_in_with_their_documented_geometry(
     # Each is held by its PROTO instance's node (its expansion is on the instance's line).
     assert barrel["owners"] == [6] and barrel["walls"][0] == 0
     assert (ball["owners"], can["owners"]) == ([5], [7])
+    # Each is recognised by a camera's Recognition node in the colours its Webots PROTO writes
+    # (Can.proto, OilBarrel.proto, SoccerBall.proto): a follower recognising a leader's Can
+    # found nothing where the stand-in had none.
+    colours = {o["line"]: o["colors"] for o in report["recognition"]["objects"]}
+    assert colours == {
+        5: pytest.approx([1.0, 1.0, 1.0, 0.0, 0.0, 0.0]),
+        6: pytest.approx([0.4, 0.1, 0.1]),
+        7: pytest.approx([0.666667, 0.0, 0.0]),
+    }
 
 
 def test_a_solid_torus_stands_in_as_its_ring_of_spheres(

@@ -32,6 +32,11 @@ axis); Webots 6 and 7's ``WoodBox`` (its PROTO of V7.2.5, ``projects/objects/...
 as published copies of Webots 7 hold it: fields translation ``0 0.3 0``, rotation ``0 1 0 0``,
 ``boxSize`` 0.6 x 0.6 x 0.6, ``color`` 1 1 1, ``textureUrl``, ``locked``; a Solid whose
 bounding object is a Box of ``boxSize`` centred on its translation, physics of density 100).
+Recognition colours, as Webots' PROTO files write them on their Solid (cyberbotics/webots,
+``projects/objects/drinks/protos/Can.proto`` R2022b-R2023a: 0.666667 0 0;
+``projects/objects/obstacles/protos/OilBarrel.proto`` R2023a-R2023b: 0.4 0.1 0.1;
+``projects/objects/balls/protos/SoccerBall.proto`` R2023a-R2023b: 1 1 1 and 0 0 0); the other
+stand-ins' PROTOs write none.
 """
 
 from __future__ import annotations
@@ -138,10 +143,19 @@ PROTO CerealBox [
 """
 
 
-def _ball(name: str, label: str, radius: float, mass: float, colour: str | None = None) -> str:
+def _ball(
+    name: str,
+    label: str,
+    radius: float,
+    mass: float,
+    colour: str | None = None,
+    recognition: str = "",
+) -> str:
     """A ball PROTO; one of a ``colour`` (Webots' default of its ``color`` field) has a Shape
-    of that colour, which a camera sees, and ``color`` changes it."""
+    of that colour, which a camera sees, and ``color`` changes it; one of ``recognition``
+    colours is recognised by a camera's Recognition node."""
     field_colour = colour or "1 1 1"
+    recognised = f"\n    recognitionColors [ {recognition} ]" if recognition else ""
     shape = ""
     if colour is not None:
         shape = """
@@ -168,7 +182,7 @@ PROTO {name} [
   Solid {{
     translation IS translation
     rotation IS rotation
-    name IS name{shape}
+    name IS name{recognised}{shape}
     boundingObject Sphere {{ radius IS radius }}
     physics Physics {{ density -1 mass IS mass }}
   }}
@@ -190,6 +204,7 @@ PROTO Can [
     translation IS translation
     rotation IS rotation
     name IS name
+    recognitionColors [ 0.666667 0 0 ]
     boundingObject Cylinder { height 0.1222 radius 0.03175 }
     physics Physics { density -1 mass IS mass }
   }
@@ -211,6 +226,7 @@ PROTO OilBarrel [
     translation IS translation
     rotation IS rotation
     name IS name
+    recognitionColors [ 0.4 0.1 0.1 ]
     boundingObject Cylinder { height IS height radius IS radius }
     physics IS physics
   }
@@ -503,7 +519,8 @@ STAND_INS: dict[str, StandIn] = {
     ),
     "CerealBox": StandIn(_CEREAL_BOX, "a box of the documented size and mass"),
     "SoccerBall": StandIn(
-        _ball("SoccerBall", "soccer ball", 0.113, 0.6), "a ball of the documented radius and mass"
+        _ball("SoccerBall", "soccer ball", 0.113, 0.6, recognition="1 1 1, 0 0 0"),
+        "a ball of the documented radius and mass",
     ),
     "Ball": StandIn(
         _ball("Ball", "ball", 0.0325, 0.055, "1.0 0.54 0.08"),
