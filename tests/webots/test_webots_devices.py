@@ -209,6 +209,14 @@ def test_camera_sees_a_wall_it_faces_and_saves_images(
     assert "called with unsupported image format (should be PNG or JPEG)" in (
         capsys.readouterr().err
     )
+    # A PNG's quality is not read (a public controller passes 'PNG', which Webots ignores); a
+    # JPEG's must be a whole number from 1 to 100, else Webots' error and nothing saved.
+    assert camera.saveImage(str(tmp_path / "named.png"), "PNG") == 0
+    assert (tmp_path / "named.png").read_bytes()[:4] == b"\x89PNG"
+    for quality in ("PNG", 0, 101, 50.5, True):
+        assert camera.saveImage(str(tmp_path / "bad.jpg"), quality) == -1
+        assert "called with invalid 'quality' argument" in capsys.readouterr().err
+    assert not (tmp_path / "bad.jpg").exists()
 
 
 def test_light_sensors_accelerometer_and_gyro() -> None:

@@ -916,13 +916,17 @@ class Camera(_Sensor):
         """-1: no segmentation."""
         return -1
 
-    def saveImage(self, filename: str | os.PathLike[str], quality: int = 100) -> int:
+    def saveImage(self, filename: str | os.PathLike[str], quality: Any = 100) -> int:
         """Saves the last image as PNG or JPEG (by the file's extension), a JPEG of
         ``quality`` (1-100) as Webots writes one (stb_image_write: its colours at full
-        resolution above quality 90, at half resolution from 90 down).
+        resolution above quality 90, at half resolution from 90 down). As in Webots (its
+        camera.c; the reference manual: "for PNG images, the quality parameter is ignored"), a
+        PNG's ``quality`` is not read at all (a public controller passes ``'PNG'``), and a
+        JPEG's that is no whole number from 1 to 100 prints Webots' error and saves nothing.
 
         Returns:
-            0 on success, -1 on failure (no image yet, unknown extension, unwritable file).
+            0 on success, -1 on failure (no image yet, unknown extension, a JPEG's quality out
+            of range, unwritable file).
 
         Raises:
             WrongTypeError: ``filename`` is no text or path object of text (or one that cannot
@@ -948,6 +952,11 @@ class Camera(_Sensor):
                 "PNG or JPEG)."
             )
             return -1
+        jpeg = extension != ".png"
+        if jpeg and not (_whole_number(quality) and 1 <= int(quality) <= 100):
+            # Webots' camera.c, word for word.
+            _print_error("Error: wb_camera_save_image() called with invalid 'quality' argument.")
+            return -1
         if pixels is None:
             _print_error(f"Error: wb_camera_save_image() cannot save {_shown(filename)}.")
             return -1
@@ -960,7 +969,7 @@ class Camera(_Sensor):
             else:
                 from PIL import Image
 
-                level = min(100, max(1, int(quality)))
+                level = int(quality)
                 subsampling = 0 if level > JPEG_FULL_COLOUR_ABOVE else 2
                 Image.fromarray(rgb).save(filename, "JPEG", quality=level, subsampling=subsampling)
         except (OSError, ValueError):
@@ -1036,3 +1045,8 @@ def _pixel(name: str, image: Any, width: Any, x: Any, y: Any) -> int:
             f"{len(image) // 4} pixels in all), found ({x}, {y}); x runs from 0 to width - 1"
         )
     return base
+
+
+def _whole_number(value: Any) -> bool:
+    """Whether ``value`` is a whole number (an int, a numpy integer), not a flag or a text."""
+    return isinstance(value, (int, np.integer)) and not isinstance(value, bool)
