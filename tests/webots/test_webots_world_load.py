@@ -10,6 +10,7 @@ from pathlib import Path
 
 import pytest
 
+from supervised_world import cruising_controller
 from swarm_project import run_project
 
 pytestmark = pytest.mark.usefixtures("own_cache")
@@ -22,15 +23,8 @@ RectangleArena { floorSize 2 2 }
 E-puck { name "driver" controller "driver" }
 Robot { name "loader" controller "loader" supervisor TRUE }
 """
-DRIVER = """from controller import Robot
-robot = Robot()
-left, right = robot.getDevice("left wheel motor"), robot.getDevice("right wheel motor")
-for motor in (left, right):
-    motor.setPosition(float("inf"))
-    motor.setVelocity(3.0)
-while robot.step(32) != -1:
-    pass
-"""
+#: The e-puck drives both wheels at 3 rad/s until the run ends.
+DRIVER = cruising_controller(3.0)
 LOADER = """import os
 from controller import Supervisor
 supervisor = Supervisor()
